@@ -1,0 +1,1177 @@
+// ============================================================================================
+// bdpt.cpp: the methods of the slides "Bidirectional Path Tracing & Reciprocity"
+// (Realistic Image Synthesis; Slusallek, Myszkowski, Singh), side by side, in one file.
+//
+// Read it top to bottom with the slides open:
+//   1 math & random numbers   2 geometry            3 BVH                 4 materials (BSDFs)
+//   5 lights                  6 camera              7 scene file          8 integrators: pt, nee
+//   9 film & rendering loop  10 command line
+// Units: radiance L, intensity I, power Phi, importance W_e. Directions point away from surfaces.
+// ============================================================================================
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+#include <unistd.h>
+#include <stb/stb_image_write.h>
+
+// == 1. Math & random numbers ================================================================
+// Float vectors for geometry and colour (RGB); the film accumulates in double.
+constexpr float kPi = 3.14159265358979323846f;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+struct Vec3 {
+    float x = 0, y = 0, z = 0;
+    Vec3() = default;
+    constexpr Vec3(float a, float b, float c) : x(a), y(b), z(c) {}
+    explicit constexpr Vec3(float a) : x(a), y(a), z(a) {}
+    float operator[](int i) const { return i == 0 ? x : i == 1 ? y : z; }
+    float& operator[](int i) { return i == 0 ? x : i == 1 ? y : z; }
+};
+inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3 operator-(Vec3 a) { return {-a.x, -a.y, -a.z}; }
+inline Vec3 operator*(Vec3 a, Vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+inline Vec3 operator*(Vec3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
+inline Vec3 operator*(float s, Vec3 a) { return a * s; }
+inline Vec3 operator/(Vec3 a, float s) { return a * (1.0f / s); }
+inline Vec3& operator+=(Vec3& a, Vec3 b) { return a = a + b; }
+inline Vec3& operator*=(Vec3& a, Vec3 b) { return a = a * b; }
+inline Vec3& operator*=(Vec3& a, float s) { return a = a * s; }
+inline float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline float absDot(Vec3 a, Vec3 b) { return std::fabs(dot(a, b)); }
+inline Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline float length(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline Vec3 normalize(Vec3 a) { return a / length(a); }
+inline float maxComponent(Vec3 a) { return std::max(a.x, std::max(a.y, a.z)); }
+inline float average(Vec3 a) { return (a.x + a.y + a.z) / 3.0f; }
+inline bool isBlack(Vec3 a) { return a.x == 0 && a.y == 0 && a.z == 0; }
+inline bool isFinite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+inline float sqr(float x) { return x * x; }
+
+// PCG32 (O'Neill): small state, good statistics, and independent streams, so every pixel and pass
+// gets its own generator and the image is the same whatever the number of threads.
+struct Rng {
+    uint64_t state = 0, inc = 1;
+    uint32_t nextUint() {
+        uint64_t old = state;
+        state = old * 6364136223846793005ULL + inc;
+        uint32_t shifted = uint32_t(((old >> 18u) ^ old) >> 27u), rot = uint32_t(old >> 59u);
+        return (shifted >> rot) | (shifted << ((-rot) & 31));
+    }
+    float uniform() { return float(nextUint() >> 8) * 0x1p-24f; }  // [0,1), 24 exact bits
+};
+inline uint64_t mix64(uint64_t z) {  // SplitMix64 finaliser: decorrelates nearby seeds
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+inline Rng makeRng(uint64_t seed, uint64_t a, uint64_t b) {
+    Rng r;
+    r.inc = (mix64(seed * 0x9E3779B97F4A7C15ULL + b) << 1u) | 1u;
+    r.state = mix64(mix64(seed + 0x632BE59BD9B4E019ULL) ^ (a * 0xD1B54A32D192ED03ULL) ^ b);
+    r.nextUint();
+    return r;
+}
+
+// Orthonormal frame around a unit normal (Duff et al. 2017), to express BSDFs locally.
+struct Frame {
+    Vec3 s, t, n;
+    explicit Frame(Vec3 normal) : n(normal) {
+        float sign = std::copysign(1.0f, n.z), a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+        s = {1 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+        t = {b, sign + n.y * n.y * a, -n.y};
+    }
+    Vec3 toWorld(Vec3 v) const { return s * v.x + t * v.y + n * v.z; }
+};
+
+// Sampling routines; each says its density and measure.
+inline Vec3 sampleCosineHemisphere(float u1, float u2) {  // pdf = cos(theta)/pi  [solid angle]
+    float r = std::sqrt(u1), phi = 2 * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1 - u1))};
+}
+inline Vec3 sampleUniformSphere(float u1, float u2) {  // pdf = 1/(4 pi)  [solid angle]
+    float z = 1 - 2 * u1, r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline Vec3 samplePowerCosine(float u1, float u2, float exponent) {  // pdf = (n+1)/(2 pi) cos^n
+    float cosT = std::pow(u1, 1.0f / (exponent + 1)), sinT = std::sqrt(std::max(0.0f, 1 - cosT * cosT));
+    float phi = 2 * kPi * u2;
+    return {sinT * std::cos(phi), sinT * std::sin(phi), cosT};
+}
+inline Vec3 reflect(Vec3 w, Vec3 n) { return 2 * dot(w, n) * n - w; }  // mirror w about n
+
+// == 2. Geometry: spheres and parallelograms ===================================================
+// A ray is o + t d with t in (0, tmax). Self-intersection ("acne") is avoided by starting new rays
+// from a point pushed off the surface along the geometric normal, to the side the ray leaves on,
+// by a distance proportional to the coordinates' magnitude (float spacing grows with it).
+struct Ray {
+    Vec3 o, d;
+    float tmax = kInf;
+};
+
+struct Shape {
+    enum Type { Sphere, Quad } type = Sphere;
+    Vec3 p;               // sphere centre, or quad corner Q
+    Vec3 u, v;            // quad edges: points Q + a u + b v, a,b in [0,1]
+    float radius = 0;     // sphere
+    float side = 1;       // sphere: +1 front side outside, -1 front side inside ("inside" keyword)
+    Vec3 normal;          // quad: unit u x v, the front side
+    float area = 0;
+    int material = 0;
+    Vec3 emission;        // radiance Le leaving the front side (black: not a light)
+    float bumpAmplitude = 0, bumpFrequency = 0;  // shading-normal perturbation (section 4)
+    int light = -1;       // index into Scene::lights when emissive
+};
+
+struct Hit {
+    float t = kInf;
+    int shape = -1;
+    bool found() const { return shape >= 0; }
+};
+
+// Ray-sphere with the two precision fixes of Haines et al. ("Precision Improvements for
+// Ray/Sphere Intersection", Ray Tracing Gems ch. 7): the discriminant from the closest-approach
+// vector, and the smaller root from c/q. Returns the nearest t in (0, tmax), or kInf.
+inline float intersectSphere(const Shape& s, const Ray& r) {
+    Vec3 f = r.o - s.p;
+    float b = dot(f, r.d);                       // d is unit length
+    Vec3 closest = f - b * r.d;
+    float disc = s.radius * s.radius - dot(closest, closest);
+    if (disc < 0) return kInf;
+    float c = dot(f, f) - s.radius * s.radius;
+    float q = -b - std::copysign(std::sqrt(disc), b);
+    float t0 = c / q, t1 = q;
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 > 0 && t0 < r.tmax) return t0;
+    if (t1 > 0 && t1 < r.tmax) return t1;        // from inside the sphere: its far side
+    return kInf;
+}
+
+// Ray-parallelogram: plane hit, then the point's (a,b) coordinates in the edge basis.
+inline float intersectQuad(const Shape& s, const Ray& r) {
+    Vec3 n = cross(s.u, s.v);
+    float denom = dot(n, r.d);
+    if (denom == 0) return kInf;                 // parallel: no hit (double-sided otherwise)
+    float t = dot(n, s.p - r.o) / denom;
+    if (!(t > 0 && t < r.tmax)) return kInf;
+    Vec3 rel = r.o + t * r.d - s.p, w = n / dot(n, n);
+    float a = dot(w, cross(rel, s.v)), b = dot(w, cross(s.u, rel));
+    return (a >= 0 && a <= 1 && b >= 0 && b <= 1) ? t : kInf;
+}
+
+inline float intersectShape(const Shape& s, const Ray& r) {
+    return s.type == Shape::Sphere ? intersectSphere(s, r) : intersectQuad(s, r);
+}
+
+// Everything the shading code needs at a hit: position, geometric normal ng (the shape's front
+// side), shading normal ns (equal to ng unless the shape has a bump), and which shape.
+struct SurfacePoint {
+    Vec3 p, ng, ns;
+    int shape = -1;
+};
+
+inline Vec3 geometricNormal(const Shape& s, Vec3 p) {
+    return s.type == Shape::Sphere ? s.side * normalize(p - s.p) : s.normal;
+}
+
+// The "procedural bump" of a shape tilts the shading normal by a smooth tangential pattern:
+// ns = normalize(ng + A (g - (g.ng) ng)), g = (sin f x, sin f y, sin f z). One directive, no maps.
+inline Vec3 shadingNormal(const Shape& s, Vec3 p, Vec3 ng) {
+    if (s.bumpAmplitude == 0) return ng;
+    float f = s.bumpFrequency;
+    Vec3 g(std::sin(f * p.x), std::sin(f * p.y), std::sin(f * p.z));
+    return normalize(ng + s.bumpAmplitude * (g - dot(g, ng) * ng));
+}
+
+inline SurfacePoint makeSurfacePoint(const Shape& s, int shapeIndex, Vec3 p) {
+    SurfacePoint sp;
+    sp.p = p;
+    sp.ng = geometricNormal(s, p);
+    sp.ns = shadingNormal(s, p, sp.ng);
+    sp.shape = shapeIndex;
+    return sp;
+}
+
+inline Vec3 offsetPoint(Vec3 p, Vec3 ng, Vec3 dir) {
+    float scale = 5e-5f * (1.0f + std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z))));
+    return p + (dot(dir, ng) > 0 ? scale : -scale) * ng;
+}
+inline Ray spawnRay(const SurfacePoint& sp, Vec3 dir) { return {offsetPoint(sp.p, sp.ng, dir), dir, kInf}; }
+
+// A shadow ray between two points, each pushed off its own surface toward the other; a point
+// without a surface (point light, pinhole) passes a zero normal.
+inline Ray shadowRay(Vec3 from, Vec3 fromNg, Vec3 to, Vec3 toNg) {
+    Vec3 d = to - from;
+    Vec3 o = isBlack(fromNg) ? from : offsetPoint(from, fromNg, d);
+    Vec3 e = isBlack(toNg) ? to : offsetPoint(to, toNg, -d);
+    Vec3 oe = e - o;
+    float dist = length(oe);
+    return {o, oe / dist, dist * (1 - 1e-4f)};
+}
+
+// What else a scene file describes: plain data; the sections below give it behaviour.
+struct Material {
+    enum Type { Diffuse, Mirror, Glass, Glossy } type = Diffuse;
+    std::string name;
+    Vec3 albedo{0.5f};     // diffuse/glossy albedo, mirror reflectance
+    float ior = 1.5f;      // glass: index of refraction inside (the back side of the surface)
+    float exponent = 0;    // glossy: Phong exponent n
+};
+
+struct Light {
+    enum Type { Area, Point } type = Area;
+    int shape = -1;        // area light: the emitting shape
+    Vec3 position;         // point light
+    Vec3 intensity;        // point light: I [W/sr] per colour channel
+    float power = 0;       // Phi, averaged over channels: chooses lights proportionally
+};
+
+struct Camera {
+    Vec3 eye, forward, right, up;  // right = forward x up: looking down +z with +y up, right is -x
+    float fovDegrees = 40, tanHalfFov = 0, aspect = 1;
+    int width = 0, height = 0;
+    float imageArea = 0;           // A: area of the image rectangle at distance 1 from the pinhole
+};
+
+// == 3. Acceleration: the primitive loop (the BVH replaces it) ===============================
+// Closest hit: the smallest t over all shapes. Any hit: stop at the first (shadow rays).
+struct Bvh {};
+
+struct Scene {
+    std::string file;
+    Camera camera;
+    std::vector<Shape> shapes;
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    std::vector<float> lightCdf;   // cumulative Phi / total Phi, for choosing a light by power
+    float totalPower = 0;
+    Bvh bvh;
+    // Deliberate mistakes for the lecture (section 4): each defaults to the physically right rule.
+    bool adjointCorrection = true;     // false: --no-adjoint-correction
+    bool symmetricRefraction = false;  // true: --symmetric-refraction
+};
+
+inline Hit intersectBruteForce(const std::vector<Shape>& shapes, const Ray& ray) {
+    Hit hit;
+    Ray r = ray;
+    for (size_t i = 0; i < shapes.size(); ++i) {
+        float t = intersectShape(shapes[i], r);
+        if (t < r.tmax) { r.tmax = t; hit.t = t; hit.shape = int(i); }
+    }
+    return hit;
+}
+inline bool occludedBruteForce(const std::vector<Shape>& shapes, const Ray& ray) {
+    for (const Shape& s : shapes)
+        if (intersectShape(s, ray) < ray.tmax) return true;
+    return false;
+}
+inline void buildAcceleration(Scene&) {}
+inline Hit intersect(const Scene& scene, const Ray& ray) { return intersectBruteForce(scene.shapes, ray); }
+inline bool occluded(const Scene& scene, const Ray& ray) { return occludedBruteForce(scene.shapes, ray); }
+inline SurfacePoint surfaceAt(const Scene& scene, const Ray& ray, const Hit& hit) {
+    return makeSurfacePoint(scene.shapes[hit.shape], hit.shape, ray.o + hit.t * ray.d);
+}
+
+// == 4. Materials: BSDFs, and where transport stops being symmetric ===========================
+// Slides: "Extension of paths at hit points" ("reciprocity of BRDF under reflection, but be
+// careful with refraction!"), "Use of shading normals", "Power versus radiance".
+// Every query takes wo, the direction the path arrived from, and wi, the next direction. On a
+// camera path wo points toward the eye and radiance flows wi -> wo; on a light path wo points
+// toward the light and importance flows wi -> wo (light itself flows wo -> wi). evalBsdfCos is
+// the factor a path vertex contributes, cosine included:
+//   Radiance:    f(wo,wi) |wi.ns|
+//   Importance:  f(wi,wo) |wi.ns| * |wo.ns||wi.ng| / (|wo.ng||wi.ns|)      (Veach 1997, ch. 5)
+// The second factor is the adjoint of a shading-normal BSDF: the geometry term G(x,y) holds
+// geometric cosines, the shading model replaces one by a shading cosine, and only the radiance
+// side cancels. Unbounded as |wo.ng| -> 0: the slides' "energy generator".
+// G's two cosines therefore live here, one at each end of a segment; connections multiply two
+// evalBsdfCos values (or an emitter/camera cosine) by V/d^2.
+// Refraction: radiance crossing into a denser medium is compressed into a smaller solid angle,
+// L_t = (eta_t/eta_i)^2 (1-F) L_i, while power/importance keeps (1-F) only.
+enum class Transport { Radiance, Importance };
+
+struct BsdfSample {
+    Vec3 wi;
+    Vec3 weight;       // evalBsdfCos / pdf; for a delta lobe, (f cos / delta) / probability
+    float pdf = 0;     // solid-angle density, or for delta lobes the discrete probability
+    bool delta = false;
+};
+
+inline bool isSpecular(const Material& m) { return m.type == Material::Mirror || m.type == Material::Glass; }
+
+// Fresnel reflectance of a smooth dielectric; eta = eta_incident / eta_transmitted.
+inline float fresnelDielectric(float cosI, float eta) {
+    float sin2T = eta * eta * std::max(0.0f, 1 - cosI * cosI);
+    if (sin2T >= 1) return 1;  // total internal reflection
+    float cosT = std::sqrt(1 - sin2T);
+    float rs = (eta * cosI - cosT) / (eta * cosI + cosT);
+    float rp = (cosI - eta * cosT) / (cosI + eta * cosT);
+    return 0.5f * (rs * rs + rp * rp);
+}
+
+// The shading normal on wo's side of the surface (shapes are two-sided for scattering).
+inline Vec3 facingShadingNormal(const SurfacePoint& sp, Vec3 wo) { return dot(wo, sp.ng) >= 0 ? sp.ns : -sp.ns; }
+
+inline float adjointCorrection(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode) {
+    if (mode == Transport::Radiance || !scene.adjointCorrection) return 1;
+    float denom = absDot(wo, sp.ng) * absDot(wi, sp.ns);
+    return denom == 0 ? 0 : absDot(wo, sp.ns) * absDot(wi, sp.ng) / denom;
+}
+
+// Non-delta part only: mirrors and glass return 0 (a connection cannot hit a delta direction).
+inline Vec3 evalBsdfCos(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode) {
+    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    if (isSpecular(m) || dot(wo, sp.ng) * dot(wi, sp.ng) <= 0) return Vec3(0);  // no light leaks
+    Vec3 n = facingShadingNormal(sp, wo);
+    float cosI = dot(wi, n);
+    if (cosI <= 0) return Vec3(0);
+    float f = 1 / kPi;  // Lambert: f = rho/pi
+    if (m.type == Material::Glossy) {  // normalized Phong: f = rho (n+2)/(2 pi) cos^n(alpha)
+        float cosA = dot(wi, reflect(wo, n));
+        f = cosA <= 0 ? 0 : (m.exponent + 2) / (2 * kPi) * std::pow(cosA, m.exponent);
+    }
+    return m.albedo * (f * cosI * adjointCorrection(scene, sp, wo, wi, mode));
+}
+
+// Solid-angle density with which sampleBsdf picks wi given wo (0 for delta lobes).
+inline float pdfBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi) {
+    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    if (isSpecular(m) || dot(wo, sp.ng) * dot(wi, sp.ng) <= 0) return 0;
+    Vec3 n = facingShadingNormal(sp, wo);
+    if (m.type == Material::Diffuse) return std::max(0.0f, dot(wi, n)) / kPi;
+    float cosA = dot(wi, reflect(wo, n));
+    return cosA <= 0 ? 0 : (m.exponent + 1) / (2 * kPi) * std::pow(cosA, m.exponent);
+}
+
+inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Transport mode, Rng& rng, BsdfSample& bs) {
+    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    Vec3 n = facingShadingNormal(sp, wo);
+    float u1 = rng.uniform(), u2 = rng.uniform();
+    bs.delta = isSpecular(m);
+    if (m.type == Material::Diffuse || m.type == Material::Glossy) {
+        Vec3 axis = m.type == Material::Diffuse ? n : reflect(wo, n);
+        Vec3 local = m.type == Material::Diffuse ? sampleCosineHemisphere(u1, u2) : samplePowerCosine(u1, u2, m.exponent);
+        bs.wi = Frame(axis).toWorld(local);
+        bs.pdf = pdfBsdf(scene, sp, wo, bs.wi);
+        if (bs.pdf <= 0) return false;  // below the surface: the path ends (the energy is lost)
+        bs.weight = evalBsdfCos(scene, sp, wo, bs.wi, mode) / bs.pdf;
+        return !isBlack(bs.weight);
+    }
+    if (m.type == Material::Mirror) {
+        bs.wi = reflect(wo, n);
+        bs.pdf = 1;
+        bs.weight = m.albedo * adjointCorrection(scene, sp, wo, bs.wi, mode);
+        return dot(bs.wi, sp.ng) * dot(wo, sp.ng) > 0;
+    }
+    // Smooth dielectric: reflect with probability F, refract with 1-F, so weight = 1 (x eta rule).
+    bool entering = dot(wo, sp.ng) > 0;  // the front side (ng) is outside, ior 1
+    float etaO = entering ? 1 : m.ior, etaT = entering ? m.ior : 1, eta = etaO / etaT;
+    float cosO = dot(wo, n);
+    float F = fresnelDielectric(cosO, eta);
+    if (u1 < F) {
+        bs.wi = reflect(wo, n);
+        bs.pdf = F;
+        bs.weight = Vec3(adjointCorrection(scene, sp, wo, bs.wi, mode));
+        return dot(bs.wi, sp.ng) * dot(wo, sp.ng) > 0;
+    }
+    float cosT = std::sqrt(std::max(0.0f, 1 - eta * eta * (1 - cosO * cosO)));
+    bs.wi = normalize(-eta * wo + (eta * cosO - cosT) * n);
+    bs.pdf = 1 - F;
+    // Radiance flows wi -> wo: L_wo = (etaO/etaT)^2 L_wi. Importance carries no such factor. The
+    // deliberate mistake swaps the rules: eye tracing scales like power (as smallpt), particles
+    // scale like radiance (a light tracer that reuses the radiance BTDF).
+    bool scaleAsRadiance = (mode == Transport::Radiance) != scene.symmetricRefraction;
+    float etaScale = !scaleAsRadiance ? 1 : mode == Transport::Radiance ? sqr(etaO / etaT) : sqr(etaT / etaO);
+    bs.weight = Vec3(etaScale * adjointCorrection(scene, sp, wo, bs.wi, mode));
+    return dot(bs.wi, sp.ng) * dot(wo, sp.ng) < 0;
+}
+
+// == 5. Lights: area lights and point lights ===================================================
+// Slide "Generating light paths": p(x, Theta_x) = Le(x,Theta_x) |Theta_x . N_x| / Phi. A light is
+// chosen with probability Phi_light / Phi, a point uniformly on its area (pdf 1/A), a direction
+// with density |cos| / pi; then Le |cos| / (p_A p_omega) = Phi for every sample. Point lights have
+// a delta position (no surface: nothing can hit them) and emit I uniformly: Phi = 4 pi I.
+// Emitters radiate from their front side only: a quad from its u x v side, a sphere from its
+// outside ("inside" flips it). Sampling and evaluation use the same normal and sidedness.
+inline Vec3 emittedRadiance(const Scene& scene, const SurfacePoint& sp, Vec3 w) {
+    return dot(w, sp.ng) > 0 ? scene.shapes[sp.shape].emission : Vec3(0);
+}
+
+inline float lightPower(const Light& light, const std::vector<Shape>& shapes) {
+    if (light.type == Light::Point) return 4 * kPi * average(light.intensity);
+    const Shape& s = shapes[light.shape];
+    return kPi * s.area * average(s.emission);  // Phi = pi Le A (one-sided Lambertian)
+}
+
+inline float lightChoiceProbability(const Scene& scene, int light) { return scene.lights[light].power / scene.totalPower; }
+
+inline int chooseLight(const Scene& scene, float u) {
+    int i = int(std::upper_bound(scene.lightCdf.begin(), scene.lightCdf.end(), u) - scene.lightCdf.begin());
+    return std::min(i, int(scene.lights.size()) - 1);
+}
+
+// A uniformly distributed point on a shape (pdf 1/area) and its front normal.
+inline SurfacePoint sampleShapePoint(const Scene& scene, int shapeIndex, float u1, float u2) {
+    const Shape& s = scene.shapes[shapeIndex];
+    Vec3 p = s.type == Shape::Sphere ? s.p + s.radius * sampleUniformSphere(u1, u2) : s.p + u1 * s.u + u2 * s.v;
+    return makeSurfacePoint(s, shapeIndex, p);
+}
+
+struct LightPoint {
+    Vec3 p, n;          // n = 0 for a point light
+    Vec3 emission;      // Le for area lights, I for point lights
+    float pdfArea = 0;  // P(light) / area; for a point light P(light) (a discrete position)
+    bool deltaPosition = false;
+    int light = -1;
+};
+
+// Next-event estimation's light sample (slide: "Next Event Estimator: try to find a direct connection").
+inline LightPoint sampleLightPoint(const Scene& scene, Rng& rng) {
+    LightPoint lp;
+    lp.light = chooseLight(scene, rng.uniform());
+    const Light& light = scene.lights[lp.light];
+    float choice = lightChoiceProbability(scene, lp.light);
+    float u1 = rng.uniform(), u2 = rng.uniform();
+    if (light.type == Light::Point) {
+        lp.p = light.position;
+        lp.emission = light.intensity;
+        lp.pdfArea = choice;
+        lp.deltaPosition = true;
+        return lp;
+    }
+    SurfacePoint sp = sampleShapePoint(scene, light.shape, u1, u2);
+    lp.p = sp.p;
+    lp.n = sp.ng;
+    lp.emission = scene.shapes[light.shape].emission;
+    lp.pdfArea = choice / scene.shapes[light.shape].area;
+    return lp;
+}
+
+// The density sampleLightPoint has at a point of an emitting shape (needed by MIS).
+inline float pdfLightPoint(const Scene& scene, int shapeIndex) {
+    const Shape& s = scene.shapes[shapeIndex];
+    return s.light < 0 ? 0 : lightChoiceProbability(scene, s.light) / s.area;
+}
+
+// A light path's first vertex and direction, with density p(x,Theta) = Le |cos| / Phi per light.
+struct EmissionSample {
+    LightPoint point;
+    Vec3 dir;
+    float pdfDir = 0;   // solid angle
+    Vec3 weight;        // Le |cos| / (pdfArea pdfDir): the light path's starting throughput
+};
+
+inline EmissionSample sampleEmission(const Scene& scene, Rng& rng) {
+    EmissionSample es;
+    es.point = sampleLightPoint(scene, rng);
+    float u1 = rng.uniform(), u2 = rng.uniform();
+    if (es.point.deltaPosition) {
+        es.dir = sampleUniformSphere(u1, u2);
+        es.pdfDir = 1 / (4 * kPi);
+        es.weight = es.point.emission / (es.point.pdfArea * es.pdfDir);
+        return es;
+    }
+    Vec3 local = sampleCosineHemisphere(u1, u2);
+    es.dir = Frame(es.point.n).toWorld(local);
+    es.pdfDir = local.z / kPi;
+    es.weight = local.z <= 0 ? Vec3(0) : es.point.emission * (local.z / (es.point.pdfArea * es.pdfDir));
+    return es;
+}
+
+// == 6. Camera: a pinhole, and its importance ==================================================
+// Slide "Generating eye paths": p(y,Theta_y) ~ W(y,Theta_y) |Theta_y . N_y|. For a pinhole the
+// image rectangle sits at distance 1 with area A. A direction at angle theta to the axis meets
+// it where dA = d omega / cos^3(theta); choosing a uniform point on the rectangle gives
+//   p_omega = 1 / (A cos^3 theta),   and   W_e = 1 / (A cos^4 theta)
+// is the importance that makes W_e cos / p_omega = 1 and integrates, with cos, to 1 over the
+// image. Normalized per pixel (area A / (width*height)), W_j = width*height / (A cos^4 theta)
+// inside pixel j: a camera sample then measures the pixel's mean radiance, and a light path
+// connected to the pinhole splats with this W_j (section 8).
+inline Ray cameraRay(const Camera& cam, float filmX, float filmY) {  // film coordinates in pixels
+    float x = (2 * filmX / cam.width - 1) * cam.tanHalfFov * cam.aspect;
+    float y = (1 - 2 * filmY / cam.height) * cam.tanHalfFov;
+    return {cam.eye, normalize(cam.forward + x * cam.right + y * cam.up), kInf};
+}
+
+// Where on the film the point p appears (false: behind the camera or outside the image).
+inline bool projectToFilm(const Camera& cam, Vec3 p, float& filmX, float& filmY) {
+    Vec3 d = p - cam.eye;
+    float z = dot(d, cam.forward);
+    if (z <= 0) return false;
+    float x = dot(d, cam.right) / (z * cam.tanHalfFov * cam.aspect), y = dot(d, cam.up) / (z * cam.tanHalfFov);
+    filmX = (x + 1) * 0.5f * cam.width;
+    filmY = (1 - y) * 0.5f * cam.height;
+    return filmX >= 0 && filmX < cam.width && filmY >= 0 && filmY < cam.height;
+}
+
+// W_e of one pixel for the unit direction dir leaving the pinhole (0 behind it).
+inline float pixelImportance(const Camera& cam, Vec3 dir) {
+    float cosT = dot(dir, cam.forward);
+    if (cosT <= 0) return 0;
+    return float(cam.width) * cam.height / (cam.imageArea * sqr(sqr(cosT)));
+}
+
+// == 7. Scene file =============================================================================
+// One directive per line, '#' starts a comment; the README documents each one with an example.
+//   camera     ex ey ez  lx ly lz  ux uy uz  fov  width height
+//   material   NAME diffuse R G B | mirror R G B | glass IOR | glossy R G B EXPONENT
+//   sphere     cx cy cz  radius  MATERIAL  [emit R G B] [inside] [bump AMPLITUDE FREQUENCY]
+//   quad       qx qy qz  ux uy uz  vx vy vz  MATERIAL  [emit R G B] [bump AMPLITUDE FREQUENCY]
+//   pointlight x y z  R G B
+// Every mistake is reported as "file:line: message" and the program exits with status 2.
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+inline std::string printable(const std::string& s) {  // binary garbage must not reach the terminal
+    std::string out;
+    for (char c : s.substr(0, 40)) out += (c >= 32 && c < 127) ? c : '?';
+    return s.size() > 40 ? out + "..." : out;
+}
+
+struct SceneParser {
+    std::string file;
+    int line = 0;
+    std::vector<std::string> tok;
+    size_t next = 0;
+    Scene scene;
+    std::map<std::string, int> materialIndex;
+    bool haveCamera = false;
+
+    [[noreturn]] void fail(const std::string& message) const {
+        throw InputError(file + ":" + std::to_string(line) + ": " + message);
+    }
+    bool more() const { return next < tok.size(); }
+    std::string word(const char* what) {
+        if (!more()) fail(std::string("missing ") + what + " in '" + tok[0] + "'");
+        return tok[next++];
+    }
+    float number(const char* what) {
+        std::string t = word(what);
+        char* end = nullptr;
+        errno = 0;
+        double v = std::strtod(t.c_str(), &end);
+        if (end == t.c_str() || *end != 0 || t.find_first_of("nNiI") != std::string::npos)
+            fail(std::string("malformed number '") + printable(t) + "' for " + what);
+        if (errno == ERANGE || !std::isfinite(float(v)) || std::fabs(v) > 1e30)
+            fail(std::string("number out of range '") + printable(t) + "' for " + what);
+        return float(v);
+    }
+    Vec3 vec3(const char* what) {
+        float x = number(what), y = number(what), z = number(what);
+        return {x, y, z};
+    }
+    Vec3 colour(const char* what, bool atMostOne) {
+        Vec3 c = vec3(what);
+        for (int i = 0; i < 3; ++i)
+            if (c[i] < 0 || (atMostOne && c[i] > 1))
+                fail(std::string(what) + " must lie in [0,1]" + (atMostOne ? "" : " or above") + ", got " +
+                     std::to_string(c[i]));
+        return c;
+    }
+    int integer(const char* what, int lo, int hi) {
+        float v = number(what);
+        if (v != std::floor(v) || v < lo || v > hi)
+            fail(std::string(what) + " must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
+        return int(v);
+    }
+    void done() {
+        if (more()) fail("unexpected '" + printable(tok[next]) + "' after '" + tok[0] + "' (too many values?)");
+    }
+
+    void parseCamera() {
+        if (haveCamera) fail("second camera (one per scene)");
+        Camera& c = scene.camera;
+        c.eye = vec3("camera position");
+        Vec3 lookAt = vec3("camera look-at point"), up = vec3("camera up vector");
+        c.fovDegrees = number("camera field of view");
+        c.width = integer("image width", 1, 16384);
+        c.height = integer("image height", 1, 16384);
+        done();
+        if (!(c.fovDegrees > 0 && c.fovDegrees < 180)) fail("field of view must lie in (0, 180) degrees");
+        if (length(lookAt - c.eye) == 0) fail("camera look-at point equals its position");
+        c.forward = normalize(lookAt - c.eye);
+        Vec3 right = cross(c.forward, up);
+        if (!(length(right) > 1e-6f * length(up))) fail("camera up vector is zero or parallel to the view direction");
+        c.right = normalize(right);
+        c.up = cross(c.right, c.forward);
+        c.tanHalfFov = std::tan(c.fovDegrees * kPi / 360);
+        c.aspect = float(c.width) / c.height;
+        c.imageArea = 4 * sqr(c.tanHalfFov) * c.aspect;
+        if (double(c.width) * c.height > 64e6) fail("image larger than 64 megapixels");
+        haveCamera = true;
+    }
+    void parseMaterial() {
+        Material m;
+        m.name = word("material name");
+        std::string type = word("material type");
+        if (type == "diffuse" || type == "mirror" || type == "glossy") {
+            m.type = type == "diffuse" ? Material::Diffuse : type == "mirror" ? Material::Mirror : Material::Glossy;
+            m.albedo = colour(type == "mirror" ? "reflectance" : "albedo", true);
+            if (type == "glossy") {
+                m.exponent = number("glossy exponent");
+                if (m.exponent < 0 || m.exponent > 1e5f) fail("glossy exponent must lie in [0, 100000]");
+            }
+        } else if (type == "glass") {
+            m.type = Material::Glass;
+            m.ior = number("index of refraction");
+            if (!(m.ior > 0)) fail("index of refraction must be > 0");
+        } else {
+            fail("unknown material type '" + printable(type) + "' (diffuse, mirror, glass, glossy)");
+        }
+        done();
+        if (materialIndex.count(m.name)) fail("duplicate material name '" + printable(m.name) + "'");
+        materialIndex[m.name] = int(scene.materials.size());
+        scene.materials.push_back(m);
+    }
+    void parseShapeOptions(Shape& s) {  // the optional words after the material name
+        std::string name = word("material name");
+        auto it = materialIndex.find(name);
+        if (it == materialIndex.end()) fail("unknown material '" + printable(name) + "' (define it first)");
+        s.material = it->second;
+        while (more()) {
+            std::string opt = word("option");
+            if (opt == "emit") {
+                s.emission = colour("emitted radiance", false);
+            } else if (opt == "inside" && s.type == Shape::Sphere) {
+                s.side = -1;
+            } else if (opt == "bump") {
+                s.bumpAmplitude = number("bump amplitude");
+                s.bumpFrequency = number("bump frequency");
+                if (s.bumpAmplitude < 0 || s.bumpAmplitude > 10) fail("bump amplitude must lie in [0, 10]");
+                if (!(s.bumpFrequency > 0)) fail("bump frequency must be > 0");
+            } else {
+                fail("unknown option '" + printable(opt) + "' (emit, bump" +
+                     (s.type == Shape::Sphere ? ", inside)" : ")"));
+            }
+        }
+    }
+    void parseSphere() {
+        Shape s;
+        s.type = Shape::Sphere;
+        s.p = vec3("sphere centre");
+        s.radius = number("sphere radius");
+        if (!(s.radius > 0)) fail("sphere radius must be > 0");
+        s.area = 4 * kPi * s.radius * s.radius;
+        parseShapeOptions(s);
+        scene.shapes.push_back(s);
+    }
+    void parseQuad() {
+        Shape s;
+        s.type = Shape::Quad;
+        s.p = vec3("quad corner");
+        s.u = vec3("quad edge u");
+        s.v = vec3("quad edge v");
+        Vec3 n = cross(s.u, s.v);
+        s.area = length(n);
+        if (!(s.area > 0) || !std::isfinite(s.area)) fail("quad has zero area (edges u and v parallel or zero)");
+        s.normal = n / s.area;
+        parseShapeOptions(s);
+        scene.shapes.push_back(s);
+    }
+    void parsePointLight() {
+        Light l;
+        l.type = Light::Point;
+        l.position = vec3("light position");
+        l.intensity = colour("intensity", false);
+        done();
+        scene.lights.push_back(l);
+    }
+
+    void parseLine(const std::string& text) {
+        std::string content = text.substr(0, text.find('#'));
+        std::istringstream in(content);
+        tok.clear();
+        next = 1;
+        for (std::string t; in >> t;) tok.push_back(t);
+        if (tok.empty()) return;
+        const std::string& d = tok[0];
+        if (d == "camera") parseCamera();
+        else if (d == "material") parseMaterial();
+        else if (d == "sphere") parseSphere();
+        else if (d == "quad") parseQuad();
+        else if (d == "pointlight") parsePointLight();
+        else fail("unknown directive '" + printable(d) + "' (camera, material, sphere, quad, pointlight)");
+    }
+
+    void finish() {  // after the last line: what the scene as a whole must have
+        if (!haveCamera) fail("no camera (add: camera ex ey ez lx ly lz ux uy uz fov width height)");
+        for (size_t i = 0; i < scene.shapes.size(); ++i) {
+            if (isBlack(scene.shapes[i].emission)) continue;
+            Light l;
+            l.shape = int(i);
+            scene.shapes[i].light = int(scene.lights.size());
+            scene.lights.push_back(l);
+        }
+        for (Light& l : scene.lights) {
+            l.power = lightPower(l, scene.shapes);
+            scene.totalPower += l.power;
+        }
+        if (!(scene.totalPower > 0)) fail("no light (add a pointlight, or 'emit R G B' to a sphere or quad)");
+        float sum = 0;
+        for (const Light& l : scene.lights) scene.lightCdf.push_back((sum += l.power) / scene.totalPower);
+        scene.file = file;
+    }
+};
+
+inline Scene parseScene(const std::string& text, const std::string& fileName) {
+    SceneParser parser;
+    parser.file = fileName;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);) {
+        ++parser.line;
+        parser.parseLine(l);
+    }
+    parser.finish();
+    buildAcceleration(parser.scene);
+    return parser.scene;
+}
+
+inline Scene loadScene(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ":0: cannot open scene file");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    return parseScene(buffer.str(), path);
+}
+
+// == 8. Integrators ============================================================================
+// Slides "Path sampling techniques" and "Results from different techniques": panels (a) to (f).
+// Every method is one function of the same shape over the shared pieces above, so that a diff of
+// two methods shows how they differ. Paths are counted in bounces (scattering vertices): a path
+// of k segments has k-1 bounces, and --maxdepth D keeps paths with at most D bounces.
+enum class Method { PT, NEE };
+
+struct RenderOptions {
+    Method method = Method::NEE;
+    bool mis = false;          // nee: combine light and BSDF sampling (power heuristic)
+    int spp = 16;              // passes of one sample per pixel
+    double seconds = 0;        // > 0: render passes until this much time has passed
+    int threads = 0;           // 0: all cores
+    uint64_t seed = 1;
+    int maxDepth = 32;         // bounces
+    int rrStart = 3;           // Russian roulette from this many bounces on
+    float exposure = 0;        // stops, for the PNG only
+    bool quiet = false;
+    std::function<void(int pass, const std::vector<Vec3>& passImage)> onPass;  // after each pass
+};
+
+struct Splat {                 // a light-path contribution that lands on some pixel
+    int pixel;
+    Vec3 value;
+};
+
+// Russian roulette ("Path tracing with Russian roulette"): continue with probability q and divide
+// the throughput by q, so E[beta 1(u<q)/q] = beta: the estimator's mean is unchanged, only paths
+// that would contribute little are cut. q follows the throughput, capped below 1 so that even
+// bright paths end eventually.
+inline bool russianRoulette(Vec3& beta, int bounces, const RenderOptions& opt, Rng& rng) {
+    if (bounces < opt.rrStart) return true;
+    float q = std::min(0.95f, maxComponent(beta));
+    if (!(rng.uniform() < q)) return false;
+    beta = beta / q;
+    return true;
+}
+
+inline float powerHeuristic(float pdfA, float pdfB) {  // Veach's power heuristic, beta = 2
+    float a = pdfA * pdfA, b = pdfB * pdfB;
+    return a + b == 0 ? 0 : a / (a + b);
+}
+
+// -- (a) pt: "unidirectional (eye tracing)". Only p_{k,0}: emission counts when a path happens to
+// hit an emitter, so a point light (nothing can hit it) stays black: "especially for point lights".
+inline Vec3 radiancePT(const Scene& scene, const RenderOptions& opt, Ray ray, Rng& rng) {
+    Vec3 L(0), beta(1);
+    for (int bounces = 0;; ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        SurfacePoint sp = surfaceAt(scene, ray, hit);
+        Vec3 wo = -ray.d;
+        L += beta * emittedRadiance(scene, sp, wo);
+        if (bounces >= opt.maxDepth) break;
+        BsdfSample bs;
+        if (!sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
+        beta *= bs.weight;
+        if (!russianRoulette(beta, bounces, opt, rng)) break;
+        ray = spawnRay(sp, bs.wi);
+    }
+    return L;
+}
+
+// Next event: one light point y for the vertex x, contribution
+//   f(x) |cos_x| * Le(y->x) |cos_y| / |x-y|^2 * V(x,y) / p_A(y)     (G(x,y) split as in section 4)
+// With mis, weighted against the chance that BSDF sampling had found y (power heuristic).
+inline Vec3 estimateDirect(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Rng& rng, bool mis) {
+    LightPoint lp = sampleLightPoint(scene, rng);
+    Vec3 d = lp.p - sp.p;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0)) return Vec3(0);
+    Vec3 wi = d / std::sqrt(dist2);
+    float cosLight = lp.deltaPosition ? 1 : dot(-wi, lp.n);
+    if (cosLight <= 0) return Vec3(0);  // the back of a one-sided emitter
+    Vec3 f = evalBsdfCos(scene, sp, wo, wi, Transport::Radiance);
+    if (isBlack(f) || occluded(scene, shadowRay(sp.p, sp.ng, lp.p, lp.n))) return Vec3(0);
+    Vec3 contribution = f * lp.emission * (cosLight / (dist2 * lp.pdfArea));
+    if (mis && !lp.deltaPosition) contribution *= powerHeuristic(lp.pdfArea * dist2 / cosLight, pdfBsdf(scene, sp, wo, wi));
+    return contribution;
+}
+
+// -- (b) nee: "unidirectional + next event". Uses p_{k,0} and p_{k,1}: at every non-specular vertex
+// a light point is connected. Without mis an emitter hit by a BSDF-sampled ray is counted only
+// after the camera or a specular bounce (where no light point could have been connected), so
+// that no path is counted twice ("make sure no path is counted multiple times, either!").
+inline Vec3 radianceNEE(const Scene& scene, const RenderOptions& opt, Ray ray, Rng& rng) {
+    Vec3 L(0), beta(1);
+    bool afterDelta = true;   // the camera counts as a delta vertex
+    float pdfPrevBsdf = 0;    // solid-angle density of the BSDF sample that made this ray
+    for (int bounces = 0;; ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        SurfacePoint sp = surfaceAt(scene, ray, hit);
+        Vec3 wo = -ray.d;
+        Vec3 Le = emittedRadiance(scene, sp, wo);
+        if (!isBlack(Le)) {
+            if (afterDelta) {
+                L += beta * Le;
+            } else if (opt.mis) {
+                float pdfLight = pdfLightPoint(scene, sp.shape) * hit.t * hit.t / dot(wo, sp.ng);
+                L += beta * Le * powerHeuristic(pdfPrevBsdf, pdfLight);
+            }
+        }
+        if (bounces >= opt.maxDepth) break;
+        const Material& m = scene.materials[scene.shapes[sp.shape].material];
+        if (!isSpecular(m)) L += beta * estimateDirect(scene, sp, wo, rng, opt.mis);
+        BsdfSample bs;
+        if (!sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
+        afterDelta = bs.delta;
+        pdfPrevBsdf = bs.pdf;
+        beta *= bs.weight;
+        if (!russianRoulette(beta, bounces, opt, rng)) break;
+        ray = spawnRay(sp, bs.wi);
+    }
+    return L;
+}
+
+// One sample of pixel (x, y): what a camera path brings back; light paths add Splats elsewhere.
+inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, int x, int y, Rng& rng, std::vector<Splat>&) {
+    float fx = x + rng.uniform(), fy = y + rng.uniform();
+    Ray ray = cameraRay(scene.camera, fx, fy);
+    switch (opt.method) {
+        case Method::PT: return radiancePT(scene, opt, ray, rng);
+        case Method::NEE: return radianceNEE(scene, opt, ray, rng);
+    }
+    return Vec3(0);
+}
+
+// == 9. Film, rendering loop, image files =======================================================
+// A pass gives every pixel one camera sample (and, for light-path methods, every pixel's random
+// stream one light path, splatted wherever it lands). Pixels write only themselves; splats are
+// kept per image row and added in row order after the pass, so the sum, and the image, is the
+// same bit for bit whatever the number of threads. The image is (sum of passes) / passes.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<Vec3> pixels;
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), pixels(size_t(w) * h) {}
+    Vec3& at(int x, int y) { return pixels[size_t(y) * width + x]; }
+    const Vec3& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
+};
+
+inline double imageMean(const Image& img) {
+    double s = 0;
+    for (const Vec3& p : img.pixels) s += double(p.x) + p.y + p.z;
+    return s / (3.0 * std::max<size_t>(1, img.pixels.size()));
+}
+
+struct RenderResult {
+    Image image;                    // mean over passes
+    Image variance;                 // per pixel and channel: variance of that mean (from the passes)
+    int passes = 0;
+    long long nonFinite = 0;        // NaN/inf samples and splats dropped
+    double seconds = 0;
+    std::vector<double> passMeans;  // each pass's image mean: independent samples of the mean
+    bool interrupted = false;
+};
+
+struct ProgressBar {
+    bool enabled = false;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last;
+    void show(double fraction, int passes, double etaSeconds) {
+        if (!enabled) return;
+        auto now = std::chrono::steady_clock::now();
+        if (fraction < 1 && now - last < std::chrono::milliseconds(200)) return;
+        last = now;
+        int width = 30, filled = int(std::min(1.0, fraction) * width);
+        std::fprintf(stderr, "\r[%s%s] %3d%%  pass %d  ETA %5.1f s ", std::string(filled, '#').c_str(),
+                     std::string(width - filled, '.').c_str(), int(100 * std::min(1.0, fraction)), passes,
+                     std::max(0.0, etaSeconds));
+        if (fraction >= 1) std::fprintf(stderr, "\n");
+    }
+};
+
+inline double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
+    const Camera& cam = scene.camera;
+    const int W = cam.width, H = cam.height;
+    int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<double> sum(size_t(W) * H * 3, 0.0), sumSq(sum.size(), 0.0);
+    std::vector<Vec3> pass(size_t(W) * H);
+    std::vector<std::vector<Splat>> rowSplats(H);
+    std::vector<long long> rowNonFinite(H);
+    RenderResult result;
+    ProgressBar bar;
+    bar.enabled = !opt.quiet && isatty(2);
+    auto t0 = std::chrono::steady_clock::now();
+    auto fraction = [&](double passesDone) {
+        return opt.seconds > 0 ? secondsSince(t0) / opt.seconds : passesDone / std::max(1, opt.spp);
+    };
+    for (int p = 0; opt.seconds > 0 ? (p == 0 || secondsSince(t0) < opt.seconds) : p < opt.spp; ++p) {
+        std::atomic<int> nextRow{0};
+        auto worker = [&](int id) {
+            for (int y; (y = nextRow.fetch_add(1)) < H;) {
+                rowSplats[y].clear();
+                rowNonFinite[y] = 0;
+                for (int x = 0; x < W; ++x) {
+                    Rng rng = makeRng(opt.seed, uint64_t(y) * W + x, uint64_t(p));
+                    Vec3 v = samplePixel(scene, opt, x, y, rng, rowSplats[y]);
+                    if (!isFinite(v)) { v = Vec3(0); ++rowNonFinite[y]; }
+                    pass[size_t(y) * W + x] = v;
+                }
+                if (id == 0) {
+                    double f = fraction(p + double(y + 1) / H);
+                    bar.show(std::min(0.999, f), p, secondsSince(t0) * (1 / std::max(1e-9, f) - 1));
+                }
+            }
+        };
+        std::vector<std::thread> pool;
+        for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i);
+        worker(0);
+        for (std::thread& t : pool) t.join();
+        double passSum = 0;
+        for (int y = 0; y < H; ++y) {
+            result.nonFinite += rowNonFinite[y];
+            for (const Splat& s : rowSplats[y]) {
+                if (isFinite(s.value)) pass[s.pixel] += s.value;
+                else ++result.nonFinite;
+            }
+        }
+        for (size_t i = 0; i < pass.size(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+                sum[3 * i + c] += pass[i][c];
+                sumSq[3 * i + c] += double(pass[i][c]) * pass[i][c];
+            }
+            passSum += double(pass[i].x) + pass[i].y + pass[i].z;
+        }
+        result.passMeans.push_back(passSum / (3.0 * pass.size()));
+        if (opt.onPass) opt.onPass(p, pass);
+        result.passes = p + 1;
+    }
+    result.seconds = secondsSince(t0);
+    bar.show(1, result.passes, 0);
+    result.image = result.variance = Image(W, H);
+    const double n = result.passes;
+    for (size_t i = 0; i < result.image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            double mean = sum[3 * i + c] / n;
+            result.image.pixels[i][c] = float(mean);
+            result.variance.pixels[i][c] =
+                n > 1 ? float(std::max(0.0, sumSq[3 * i + c] / n - mean * mean) / (n - 1)) : 0.0f;
+        }
+    return result;
+}
+
+// Files appear whole or not at all: written under a temporary name, then renamed.
+inline bool commitFile(const std::string& tmp, const std::string& path, bool ok) {
+    if (ok && std::rename(tmp.c_str(), path.c_str()) == 0) return true;
+    std::remove(tmp.c_str());
+    return false;
+}
+inline std::string tempName(const std::string& path) { return path + ".tmp" + std::to_string(getpid()); }
+
+// PFM: linear floats, little-endian (scale -1), rows from the bottom up.
+inline bool writePFM(const Image& img, const std::string& path) {
+    std::string tmp = tempName(path);
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) return false;
+    bool ok = std::fprintf(f, "PF\n%d %d\n-1.0\n", img.width, img.height) > 0;
+    for (int y = img.height - 1; y >= 0 && ok; --y)
+        ok = std::fwrite(&img.at(0, y), sizeof(Vec3), img.width, f) == size_t(img.width);
+    ok = (std::fclose(f) == 0) && ok;
+    return commitFile(tmp, path, ok);
+}
+
+inline bool readPFM(const std::string& path, Image& img) {
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return false;
+    char magic[3] = {0};
+    int w = 0, h = 0;
+    float scale = 0;
+    bool ok = std::fscanf(f, "%2s %d %d %f", magic, &w, &h, &scale) == 4 && std::string(magic) == "PF" && w > 0 &&
+              h > 0 && w <= 16384 && h <= 16384 && scale < 0 && std::fgetc(f) != EOF;
+    if (ok) {
+        img = Image(w, h);
+        for (int y = h - 1; y >= 0 && ok; --y) ok = std::fread(&img.at(0, y), sizeof(Vec3), w, f) == size_t(w);
+    }
+    std::fclose(f);
+    return ok;
+}
+
+inline unsigned char toSRGB8(float linear) {
+    float v = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
+    return (unsigned char)(std::min(1.0f, std::max(0.0f, v)) * 255.0f + 0.5f);
+}
+
+inline bool writePNG(const Image& img, const std::string& path, float exposure) {
+    std::vector<unsigned char> bytes(img.pixels.size() * 3);
+    float scale = std::exp2(exposure);
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) bytes[3 * i + c] = toSRGB8(img.pixels[i][c] * scale);
+    std::string tmp = tempName(path);
+    bool ok = stbi_write_png(tmp.c_str(), img.width, img.height, 3, bytes.data(), img.width * 3) != 0;
+    return commitFile(tmp, path, ok);
+}
+
+inline std::string replaceExtension(const std::string& path, const std::string& ext) {
+    size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
+    bool hasExt = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+    return (hasExt ? path.substr(0, dot) : path) + ext;
+}
+
+// == 10. Command line ===========================================================================
+const char* kUsage = R"(usage: bdpt SCENE [options]
+Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)
+and, beside it, a PFM with the linear values.
+
+Method
+  --method M        pt   (a) eye tracing: emission counted only when a path hits a light
+                    nee  (b) path tracing with next-event estimation (default)
+  --mis             nee: weight light and BSDF sampling with the power heuristic
+  --maxdepth D      at most D bounces (scattering vertices) per path (default 32)
+Sampling
+  --spp N           N passes of one sample per pixel (default 16)
+  --time SECONDS    render passes until SECONDS have passed (replaces --spp)
+  --seed S          seed of every pixel's random stream (default 1)
+  --threads N       worker threads (default: all cores); the image does not depend on N
+Output
+  --out FILE.png    PNG file (default render.png); the PFM goes to FILE.pfm
+  --res WxH         override the scene's resolution (e.g. --res 128x128)
+  --exposure STOPS  scale the PNG by 2^STOPS (the PFM stays linear)
+  --quiet           no progress bar and no summary line
+  --help            this text
+Exit status: 0 done, 1 an output file could not be written, 2 bad scene file or option.
+)";
+
+struct CommandLine {
+    std::string scenePath, out = "render.png";
+    RenderOptions opt;
+    int width = 0, height = 0;
+    bool help = false;
+};
+
+inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
+    CommandLine cl;
+    auto fail = [](const std::string& m) -> void { throw InputError("bdpt: " + m + " (see --help)"); };
+    auto value = [&](size_t& i) -> std::string {
+        if (i + 1 >= args.size()) fail("option " + args[i] + " needs a value");
+        return args[++i];
+    };
+    auto number = [&](size_t& i, double lo, double hi) -> double {
+        std::string name = args[i], v = value(i);
+        char* end = nullptr;
+        double x = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != 0 || !std::isfinite(x) || x < lo || x > hi)
+            fail("option " + name + " needs a number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                 ", got '" + printable(v) + "'");
+        return x;
+    };
+    auto integer = [&](size_t& i, double lo, double hi) -> long long {
+        std::string name = args[i];
+        double x = number(i, lo, hi);
+        if (x != std::floor(x)) fail("option " + name + " needs a whole number");
+        return (long long)x;
+    };
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--help" || a == "-h") cl.help = true;
+        else if (a == "--method") {
+            std::string m = value(i);
+            if (m == "pt") cl.opt.method = Method::PT;
+            else if (m == "nee") cl.opt.method = Method::NEE;
+            else fail("unknown method '" + printable(m) + "' (pt, nee)");
+        } else if (a == "--mis") cl.opt.mis = true;
+        else if (a == "--maxdepth") cl.opt.maxDepth = int(integer(i, 0, 10000));
+        else if (a == "--spp") cl.opt.spp = int(integer(i, 1, 1e8));
+        else if (a == "--time") cl.opt.seconds = number(i, 1e-3, 1e7);
+        else if (a == "--seed") cl.opt.seed = uint64_t(integer(i, 0, 9e15));
+        else if (a == "--threads") cl.opt.threads = int(integer(i, 1, 1024));
+        else if (a == "--out") cl.out = value(i);
+        else if (a == "--exposure") cl.opt.exposure = float(number(i, -50, 50));
+        else if (a == "--quiet") cl.opt.quiet = true;
+        else if (a == "--res") {
+            std::string v = value(i);
+            int w = 0, h = 0;
+            char tail = 0;
+            if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+                fail("option --res needs WIDTHxHEIGHT, each 1 to 16384, got '" + printable(v) + "'");
+            cl.width = w;
+            cl.height = h;
+        } else if (!a.empty() && a[0] == '-') fail("unknown option '" + printable(a) + "'");
+        else if (cl.scenePath.empty()) cl.scenePath = a;
+        else fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
+    }
+    if (!cl.help && cl.scenePath.empty()) fail("no scene file given");
+    if (!cl.help && replaceExtension(cl.out, ".pfm") == cl.out) fail("--out must not end in .pfm (the PFM goes beside the PNG)");
+    return cl;
+}
+
+inline void setResolution(Camera& cam, int width, int height) {
+    cam.width = width;
+    cam.height = height;
+    cam.aspect = float(width) / height;
+    cam.imageArea = 4 * sqr(cam.tanHalfFov) * cam.aspect;
+}
+
+inline int runCommandLine(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    CommandLine cl;
+    Scene scene;
+    try {
+        cl = parseCommandLine(args);
+        if (cl.help) { out << kUsage; return 0; }
+        scene = loadScene(cl.scenePath);
+    } catch (const InputError& e) {
+        err << e.what() << "\n";
+        return 2;
+    }
+    if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
+    RenderResult r = render(scene, cl.opt);
+    std::string pfm = replaceExtension(cl.out, ".pfm");
+    if (!writePNG(r.image, cl.out, cl.opt.exposure) || !writePFM(r.image, pfm)) {
+        err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
+        std::remove(cl.out.c_str());
+        return 1;
+    }
+    if (!cl.opt.quiet)
+        out << cl.scenePath << ": " << r.passes << " samples per pixel in " << r.seconds << " s, mean " << imageMean(r.image)
+            << ", " << r.nonFinite << " non-finite samples dropped; wrote " << cl.out << " and " << pfm << "\n";
+    return 0;
+}
+
+#ifndef BDPT_NO_MAIN
+int main(int argc, char** argv) { return runCommandLine(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr); }
+#endif

@@ -1,0 +1,77 @@
+// Shared by the test files: each is its own program that includes the renderer (without its main).
+#pragma once
+#define BDPT_NO_MAIN
+#include "bdpt.cpp"
+#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
+#include <doctest/doctest.h>
+#include <sys/stat.h>
+
+inline Scene sceneAt(const std::string& file, int width, int height) {
+    Scene s = loadScene(file);
+    setResolution(s.camera, width, height);
+    return s;
+}
+
+inline RenderOptions quietOptions(Method m, int spp, uint64_t seed = 1) {
+    RenderOptions o;
+    o.method = m;
+    o.spp = spp;
+    o.seed = seed;
+    o.quiet = true;
+    return o;
+}
+
+// Mean of each of grid x grid image regions (all channels), per pass: passes are independent,
+// so the spread of a region's pass means gives an honest standard error, even for light
+// tracing, whose one light path lands in many pixels of a pass.
+struct RegionEstimate {
+    std::vector<double> mean, stdError;  // per region; the last entry is the whole image
+};
+
+inline RegionEstimate renderRegions(const Scene& scene, RenderOptions opt, int grid, RenderResult* out = nullptr) {
+    const int W = scene.camera.width, H = scene.camera.height, R = grid * grid + 1;
+    std::vector<std::vector<double>> samples(R);
+    opt.onPass = [&](int, const std::vector<Vec3>& pass) {
+        std::vector<double> s(R, 0.0);
+        std::vector<int> n(R, 0);
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                int r = (y * grid / H) * grid + x * grid / W;
+                double v = average(pass[size_t(y) * W + x]);
+                s[r] += v; ++n[r];
+                s[R - 1] += v; ++n[R - 1];
+            }
+        for (int r = 0; r < R; ++r) samples[r].push_back(s[r] / n[r]);
+    };
+    RenderResult result = render(scene, opt);
+    if (out) *out = result;
+    RegionEstimate e;
+    for (const auto& v : samples) {
+        double m = 0, q = 0;
+        for (double x : v) m += x;
+        m /= v.size();
+        for (double x : v) q += (x - m) * (x - m);
+        e.mean.push_back(m);
+        e.stdError.push_back(std::sqrt(q / (v.size() - 1) / v.size()));
+    }
+    return e;
+}
+
+// The largest |difference| / standard error over the regions of two independent estimates.
+inline double maxZ(const RegionEstimate& a, const RegionEstimate& b) {
+    double z = 0;
+    for (size_t r = 0; r < a.mean.size(); ++r)
+        z = std::max(z, std::fabs(a.mean[r] - b.mean[r]) / std::sqrt(sqr(a.stdError[r]) + sqr(b.stdError[r])));
+    return z;
+}
+
+inline bool fileExists(const std::string& path) {
+    struct stat st;
+    return stat(path.c_str(), &st) == 0;
+}
+
+inline std::string writeTempFile(const std::string& name, const std::string& text) {
+    std::string path = "build/tmp_" + name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}

@@ -1,0 +1,250 @@
+// Core renderer: intersector, BSDF energy, furnace, pt = nee, bad input. (Issue: core renderer.)
+#include "helpers.h"
+
+TEST_CASE("ray-sphere: outside, inside, miss, and the far side only when the near one is behind") {
+    Shape s;
+    s.type = Shape::Sphere;
+    s.p = Vec3(0, 0, 0);
+    s.radius = 1;
+    CHECK(intersectSphere(s, {Vec3(0, 0, -5), Vec3(0, 0, 1), kInf}) == doctest::Approx(4.0f));
+    CHECK(intersectSphere(s, {Vec3(0, 0, 0), Vec3(0, 0, 1), kInf}) == doctest::Approx(1.0f));  // from inside
+    CHECK(intersectSphere(s, {Vec3(0, 1.01f, -5), Vec3(0, 0, 1), kInf}) == kInf);
+    CHECK(intersectSphere(s, {Vec3(0, 0, 5), Vec3(0, 0, 1), kInf}) == kInf);                  // behind
+    CHECK(intersectSphere(s, {Vec3(0, 0, -5), Vec3(0, 0, 1), 3.9f}) == kInf);                 // tmax
+    // Far away and small: the precision fix keeps the hit within float rounding of the truth.
+    s.p = Vec3(0, 0, 1e4f);
+    s.radius = 0.5f;
+    CHECK(intersectSphere(s, {Vec3(0, 0, 0), Vec3(0, 0, 1), kInf}) == doctest::Approx(9999.5f).epsilon(1e-6));
+    // A ray leaving a surface point, pushed off by offsetPoint, does not hit its own sphere.
+    s.p = Vec3(0, 0, 0);
+    s.radius = 300;
+    Rng rng = makeRng(7, 0, 0);
+    int selfHits = 0;
+    for (int i = 0; i < 10000; ++i) {
+        Vec3 n = sampleUniformSphere(rng.uniform(), rng.uniform());
+        SurfacePoint sp = makeSurfacePoint(s, 0, s.p + s.radius * n);
+        Vec3 d = Frame(sp.ng).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+        selfHits += intersectSphere(s, spawnRay(sp, d)) < kInf;
+    }
+    CHECK(selfHits == 0);
+}
+
+TEST_CASE("ray-quad: inside, edges, outside, parallel, back side") {
+    Shape q;
+    q.type = Shape::Quad;
+    q.p = Vec3(0, 0, 0);
+    q.u = Vec3(2, 0, 0);
+    q.v = Vec3(0, 1, 0);
+    CHECK(intersectQuad(q, {Vec3(1, 0.5f, -3), Vec3(0, 0, 1), kInf}) == doctest::Approx(3.0f));
+    CHECK(intersectQuad(q, {Vec3(1, 0.5f, 3), Vec3(0, 0, -1), kInf}) == doctest::Approx(3.0f));  // back side
+    CHECK(intersectQuad(q, {Vec3(2.01f, 0.5f, -3), Vec3(0, 0, 1), kInf}) == kInf);
+    CHECK(intersectQuad(q, {Vec3(1, -0.01f, -3), Vec3(0, 0, 1), kInf}) == kInf);
+    CHECK(intersectQuad(q, {Vec3(1, 0.5f, -3), Vec3(1, 0, 0), kInf}) == kInf);                   // parallel
+    Vec3 d = normalize(Vec3(1, 1, 2));
+    float t = intersectQuad(q, {Vec3(0, 0, -2), d, kInf});
+    CHECK(t == doctest::Approx(2 / d.z));
+}
+
+// A one-shape scene around a material, to query its BSDF in isolation.
+static Scene materialScene(Material m, Vec3 ns = Vec3(0, 0, 1)) {
+    Scene s;
+    s.materials.push_back(m);
+    Shape q;
+    q.type = Shape::Quad;
+    q.p = Vec3(-1, -1, 0);
+    q.u = Vec3(2, 0, 0);
+    q.v = Vec3(0, 2, 0);
+    q.normal = Vec3(0, 0, 1);
+    q.area = 4;
+    s.shapes.push_back(q);
+    (void)ns;
+    return s;
+}
+static SurfacePoint origin(Vec3 ns = Vec3(0, 0, 1)) {
+    SurfacePoint sp;
+    sp.p = Vec3(0, 0, 0);
+    sp.ng = Vec3(0, 0, 1);
+    sp.ns = ns;
+    sp.shape = 0;
+    return sp;
+}
+
+// Directional albedo two ways: the mean sampling weight E[f cos / pdf], and (for non-delta lobes)
+// an independent uniform-sphere integral of evalBsdfCos. They must agree, and stay <= 1.
+TEST_CASE("BSDF albedo <= 1 and sampling consistent with evaluation") {
+    Material diffuse, glossy, mirror, glass;
+    diffuse.albedo = Vec3(0.8f);
+    glossy.type = Material::Glossy;
+    glossy.albedo = Vec3(1.0f);
+    glossy.exponent = 20;
+    mirror.type = Material::Mirror;
+    mirror.albedo = Vec3(0.9f);
+    glass.type = Material::Glass;
+    glass.ior = 1.5f;
+    const int N = 200000;
+    for (Material m : {diffuse, glossy, mirror, glass}) {
+        Scene scene = materialScene(m);
+        SurfacePoint sp = origin();
+        for (float theta : {0.0f, 0.5f, 1.0f, 1.4f}) {
+            CAPTURE(m.type);
+            CAPTURE(theta);
+            Vec3 wo(std::sin(theta), 0, std::cos(theta));
+            Rng rng = makeRng(3, m.type, uint64_t(theta * 100));
+            double sampled = 0, uniform = 0;
+            for (int i = 0; i < N; ++i) {
+                BsdfSample bs;
+                if (sampleBsdf(scene, sp, wo, Transport::Importance, rng, bs)) sampled += bs.weight.x;
+                Vec3 wi = sampleUniformSphere(rng.uniform(), rng.uniform());
+                uniform += evalBsdfCos(scene, sp, wo, wi, Transport::Importance).x * 4 * kPi;
+            }
+            sampled /= N;
+            uniform /= N;
+            CHECK(sampled <= 1.0 + 1e-3);
+            if (m.type == Material::Diffuse) CHECK(sampled == doctest::Approx(0.8).epsilon(1e-6));
+            if (m.type == Material::Mirror) CHECK(sampled == doctest::Approx(0.9).epsilon(1e-6));
+            if (m.type == Material::Glass) CHECK(sampled == doctest::Approx(1.0).epsilon(1e-6));  // power: R + T = 1
+            if (!isSpecular(m)) CHECK(sampled == doctest::Approx(uniform).epsilon(0.03));
+            if (m.type == Material::Glossy && theta == 0) CHECK(sampled == doctest::Approx(1.0).epsilon(0.01));
+        }
+    }
+}
+
+TEST_CASE("Fresnel of a dielectric (eta 1.5): normal, 45 degrees, Brewster, total internal reflection") {
+    CHECK(fresnelDielectric(1.0f, 1 / 1.5f) == doctest::Approx(0.04f).epsilon(1e-4));
+    CHECK(fresnelDielectric(std::cos(45 * kPi / 180), 1 / 1.5f) == doctest::Approx(0.05024f).epsilon(1e-3));
+    CHECK(fresnelDielectric(std::cos(56.31f * kPi / 180), 1 / 1.5f) == doctest::Approx(0.07396f).epsilon(1e-3));
+    CHECK(fresnelDielectric(std::cos(41.0f * kPi / 180), 1.5f) < 1.0f);   // just inside the critical angle
+    CHECK(fresnelDielectric(std::cos(42.0f * kPi / 180), 1.5f) == 1.0f);  // beyond 41.81 degrees
+}
+
+TEST_CASE("furnace: L = Le / (1 - a) = 2 within 1% for pt and nee; truncated at D bounces") {
+    Scene scene = sceneAt("scenes/furnace.scene", 32, 32);
+    for (Method m : {Method::PT, Method::NEE}) {
+        RenderResult r = render(scene, quietOptions(m, 64));
+        CAPTURE(int(m));
+        CHECK(imageMean(r.image) == doctest::Approx(2.0).epsilon(0.01));
+        CHECK(r.nonFinite == 0);
+        RenderOptions o = quietOptions(m, 64);
+        o.maxDepth = 2;  // Le (1 + a + a^2) = 1.75
+        CHECK(imageMean(render(scene, o).image) == doctest::Approx(1.75).epsilon(0.01));
+    }
+}
+
+TEST_CASE("pt and nee (with and without MIS) agree on cornell within statistical error") {
+    Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
+    RegionEstimate pt = renderRegions(scene, quietOptions(Method::PT, 2048, 11), 4);
+    RegionEstimate nee = renderRegions(scene, quietOptions(Method::NEE, 1024, 12), 4);
+    RenderOptions misOpt = quietOptions(Method::NEE, 1024, 13);
+    misOpt.mis = true;
+    RegionEstimate mis = renderRegions(scene, misOpt, 4);
+    CHECK(maxZ(pt, nee) < 4.5);
+    CHECK(maxZ(nee, mis) < 4.5);
+    // And the comparison has teeth: 3% less light is detected.
+    RegionEstimate darker = nee;
+    for (double& m : darker.mean) m *= 0.97;
+    CHECK(maxZ(pt, darker) > 4.5);
+}
+
+TEST_CASE("pt leaves the point-lit box black; nee does not") {
+    Scene scene = sceneAt("scenes/cornell-point.scene", 16, 16);
+    CHECK(imageMean(render(scene, quietOptions(Method::PT, 4)).image) == 0.0);
+    CHECK(imageMean(render(scene, quietOptions(Method::NEE, 4)).image) > 0.05);
+}
+
+TEST_CASE("the image is the same bit for bit with 1 and 2 threads") {
+    Scene scene = sceneAt("scenes/cornell-glass.scene", 24, 24);
+    RenderOptions a = quietOptions(Method::NEE, 3), b = a;
+    a.threads = 1;
+    b.threads = 2;
+    RenderResult ra = render(scene, a), rb = render(scene, b);
+    CHECK(std::memcmp(ra.image.pixels.data(), rb.image.pixels.data(), ra.image.pixels.size() * sizeof(Vec3)) == 0);
+    b.seed = 2;
+    RenderResult rc = render(scene, b);
+    CHECK(std::memcmp(ra.image.pixels.data(), rc.image.pixels.data(), ra.image.pixels.size() * sizeof(Vec3)) != 0);
+}
+
+TEST_CASE("PFM round trip and atomic output files") {
+    Scene scene = sceneAt("scenes/cornell.scene", 8, 6);
+    RenderResult r = render(scene, quietOptions(Method::NEE, 1));
+    REQUIRE(writePFM(r.image, "build/tmp_roundtrip.pfm"));
+    Image back;
+    REQUIRE(readPFM("build/tmp_roundtrip.pfm", back));
+    CHECK(back.width == 8);
+    CHECK(back.height == 6);
+    CHECK(std::memcmp(back.pixels.data(), r.image.pixels.data(), back.pixels.size() * sizeof(Vec3)) == 0);
+    CHECK(!fileExists(tempName("build/tmp_roundtrip.pfm")));
+    CHECK(!writePFM(r.image, "build/no-such-dir/x.pfm"));
+    CHECK(!fileExists("build/no-such-dir/x.pfm"));
+}
+
+// Every kind of bad input: its message, exit status 2, and no output file.
+static void expectBadInput(const std::string& sceneText, const std::vector<std::string>& extraArgs, const std::string& message) {
+    std::string scene = writeTempFile("bad.scene", sceneText), out = "build/tmp_bad_out.png";
+    std::remove(out.c_str());
+    std::vector<std::string> args = {scene, "--out", out, "--spp", "1", "--quiet"};
+    args.insert(args.end(), extraArgs.begin(), extraArgs.end());
+    std::ostringstream so, se;
+    int status = runCommandLine(args, so, se);
+    CAPTURE(sceneText);
+    CAPTURE(se.str());
+    CHECK(status == 2);
+    CHECK(se.str().find(message) != std::string::npos);
+    CHECK(!fileExists(out));
+    CHECK(!fileExists("build/tmp_bad_out.pfm"));
+}
+
+TEST_CASE("bad input: file:line message, exit 2, no output file") {
+    const std::string cam = "camera 0 0 -5  0 0 0  0 1 0  40  8 8\n";
+    const std::string mat = "material m diffuse 0.5 0.5 0.5\n";
+    const std::string light = "pointlight 0 2 0  1 1 1\n";
+    expectBadInput(cam + mat + "cube 0 0 0 1 m\n" + light, {}, "bad.scene:3: unknown directive 'cube'");
+    expectBadInput(cam + mat + "sphere 0 0 0 m\n" + light, {}, "bad.scene:3: malformed number 'm' for sphere radius");
+    expectBadInput(cam + mat + "sphere 0 0 0\n" + light, {}, "bad.scene:3: missing sphere radius");
+    expectBadInput(cam + mat + light + "pointlight 0 2 0 1 1 1 7\n", {}, "bad.scene:4: unexpected '7'");
+    expectBadInput(cam + mat + "sphere 0 0 1e999 1 m\n" + light, {}, "bad.scene:3: number out of range");
+    expectBadInput(cam + mat + "sphere 0 0 nan 1 m\n" + light, {}, "bad.scene:3: malformed number 'nan'");
+    expectBadInput(cam + mat + "sphere 0 0 0 1 wood\n" + light, {}, "bad.scene:3: unknown material 'wood'");
+    expectBadInput(cam + mat + mat + light, {}, "bad.scene:3: duplicate material name 'm'");
+    expectBadInput(cam + mat + "sphere 0 0 0 -1 m\n" + light, {}, "bad.scene:3: sphere radius must be > 0");
+    expectBadInput(cam + mat + "sphere 0 0 0 0 m\n" + light, {}, "bad.scene:3: sphere radius must be > 0");
+    expectBadInput(cam + mat + "quad 0 0 0  1 0 0  2 0 0  m\n" + light, {}, "bad.scene:3: quad has zero area");
+    expectBadInput(cam + "material g glass 0\n" + light, {}, "bad.scene:2: index of refraction must be > 0");
+    expectBadInput(cam + "material g glass -1.5\n" + light, {}, "bad.scene:2: index of refraction must be > 0");
+    expectBadInput(cam + "material d diffuse 0.5 1.2 0.5\n" + light, {}, "bad.scene:2: albedo must lie in [0,1]");
+    expectBadInput(cam + "material d diffuse 0.5 -0.1 0.5\n" + light, {}, "bad.scene:2: albedo must lie in [0,1]");
+    expectBadInput("camera 0 0 -5  0 0 0  0 1 0  40  0 8\n" + light, {}, "bad.scene:1: image width must be a whole number");
+    expectBadInput("camera 0 0 -5  0 0 0  0 1 0  40  100000 8\n" + light, {}, "bad.scene:1: image width must be");
+    expectBadInput("camera 0 0 -5  0 0 0  0 1 0  40  10000 10000\n" + light, {}, "bad.scene:1: image larger than 64 megapixels");
+    expectBadInput(mat + light, {}, "bad.scene:2: no camera");
+    expectBadInput(cam + mat + "sphere 0 0 0 1 m\n", {}, "bad.scene:3: no light");
+    expectBadInput(cam + mat + "sphere 0 0 0 1 m emit 0 0 0\n", {}, "bad.scene:3: no light");
+    expectBadInput(cam + light, {"--method", "magic"}, "bdpt: unknown method 'magic'");
+    expectBadInput(cam + light, {"--fast"}, "bdpt: unknown option '--fast'");
+    expectBadInput(cam + light, {"--spp", "0"}, "bdpt: option --spp needs a number from 1");
+    expectBadInput(cam + light, {"--spp"}, "bdpt: option --spp needs a value");
+    std::ostringstream so, se;
+    CHECK(runCommandLine({"build/does-not-exist.scene", "--out", "build/tmp_bad_out.png"}, so, se) == 2);
+    CHECK(se.str() == "build/does-not-exist.scene:0: cannot open scene file\n");
+    CHECK(!fileExists("build/tmp_bad_out.png"));
+}
+
+TEST_CASE("--help lists every option the parser accepts") {
+    std::ostringstream so, se;
+    CHECK(runCommandLine({"--help"}, so, se) == 0);
+    for (const char* opt : {"--method", "--mis", "--maxdepth", "--spp", "--time", "--seed", "--threads", "--out", "--res",
+                            "--exposure", "--quiet", "--help"})
+        CHECK(so.str().find(opt) != std::string::npos);
+}
+
+TEST_CASE("a good run writes both files and reports them") {
+    std::remove("build/tmp_good.png");
+    std::remove("build/tmp_good.pfm");
+    std::ostringstream so, se;
+    CHECK(runCommandLine({"scenes/furnace.scene", "--res", "8x8", "--spp", "2", "--out", "build/tmp_good.png"}, so, se) == 0);
+    CHECK(fileExists("build/tmp_good.png"));
+    Image img;
+    REQUIRE(readPFM("build/tmp_good.pfm", img));
+    CHECK(img.width == 8);
+    CHECK(imageMean(img) == doctest::Approx(2.0).epsilon(0.1));
+    CHECK(so.str().find("0 non-finite samples dropped") != std::string::npos);
+}
