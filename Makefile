@@ -23,7 +23,11 @@ build/%: tests/%.cpp bdpt.cpp
 test: bdpt $(TESTS)
 	@set -e; for t in $(TESTS); do echo "== $$t"; ./$$t; done
 
+# BVH against Embree (installs libembree-dev for the yardstick in ../shared/perf).
+bench: bdpt
+	tests/bench.sh
+
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test clean
+.PHONY: all run test bench clean

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -145,13 +146,13 @@ struct Hit {
 // Ray-sphere with the two precision fixes of Haines et al. ("Precision Improvements for
 // Ray/Sphere Intersection", Ray Tracing Gems ch. 7): the discriminant from the closest-approach
 // vector, and the smaller root from c/q. Returns the nearest t in (0, tmax), or kInf.
-inline float intersectSphere(const Shape& s, const Ray& r) {
-    Vec3 f = r.o - s.p;
+inline float intersectSphere(Vec3 centre, float radius, const Ray& r) {
+    Vec3 f = r.o - centre;
     float b = dot(f, r.d);                       // d is unit length
     Vec3 closest = f - b * r.d;
-    float disc = s.radius * s.radius - dot(closest, closest);
+    float disc = radius * radius - dot(closest, closest);
     if (disc < 0) return kInf;
-    float c = dot(f, f) - s.radius * s.radius;
+    float c = dot(f, f) - radius * radius;
     float q = -b - std::copysign(std::sqrt(disc), b);
     float t0 = c / q, t1 = q;
     if (t0 > t1) std::swap(t0, t1);
@@ -160,20 +161,25 @@ inline float intersectSphere(const Shape& s, const Ray& r) {
     return kInf;
 }
 
-// Ray-parallelogram: plane hit, then the point's (a,b) coordinates in the edge basis.
-inline float intersectQuad(const Shape& s, const Ray& r) {
-    Vec3 n = cross(s.u, s.v);
-    float denom = dot(n, r.d);
+// Ray-parallelogram: plane hit, then the point's (a,b) coordinates in the edge basis, with
+// w = n/(n.n), n = u x v (precomputed by the BVH; the same arithmetic either way).
+inline Vec3 quadW(Vec3 u, Vec3 v) {
+    Vec3 n = cross(u, v);
+    return n / dot(n, n);
+}
+inline float intersectQuad(Vec3 q, Vec3 u, Vec3 v, Vec3 w, const Ray& r) {
+    float denom = dot(w, r.d);
     if (denom == 0) return kInf;                 // parallel: no hit (double-sided otherwise)
-    float t = dot(n, s.p - r.o) / denom;
+    float t = dot(w, q - r.o) / denom;
     if (!(t > 0 && t < r.tmax)) return kInf;
-    Vec3 rel = r.o + t * r.d - s.p, w = n / dot(n, n);
-    float a = dot(w, cross(rel, s.v)), b = dot(w, cross(s.u, rel));
+    Vec3 rel = r.o + t * r.d - q;
+    float a = dot(w, cross(rel, v)), b = dot(w, cross(u, rel));
     return (a >= 0 && a <= 1 && b >= 0 && b <= 1) ? t : kInf;
 }
+inline float intersectQuad(const Shape& s, const Ray& r) { return intersectQuad(s.p, s.u, s.v, quadW(s.u, s.v), r); }
 
 inline float intersectShape(const Shape& s, const Ray& r) {
-    return s.type == Shape::Sphere ? intersectSphere(s, r) : intersectQuad(s, r);
+    return s.type == Shape::Sphere ? intersectSphere(s.p, s.radius, r) : intersectQuad(s, r);
 }
 
 // Everything the shading code needs at a hit: position, geometric normal ng (the shape's front
@@ -246,9 +252,276 @@ struct Camera {
     float imageArea = 0;           // A: area of the image rectangle at distance 1 from the pinhole
 };
 
-// == 3. Acceleration: the primitive loop (the BVH replaces it) ===============================
-// Closest hit: the smallest t over all shapes. Any hit: stop at the first (shadow rays).
-struct Bvh {};
+// == 3. Acceleration: a 4-wide BVH ===========================================================
+// Tracing a ray means finding the closest of N shapes; a bounding volume hierarchy makes that
+// about log N box tests instead of N shape tests.
+// Build: binned SAH. Split a set of shapes where the surface area heuristic
+//   cost = A(left)/A * N(left) + A(right)/A * N(right)
+// is smallest, over 16 bins of centroid positions on each axis; split the child with the
+// largest area again until a node has 4 children. Leaves hold at most 4 shapes, stored
+// contiguously in leaf order.
+// Traverse: each node keeps its 4 child boxes as structure-of-arrays (all min-x together, ...),
+// so one SSE slab test checks all four children. Closest hit visits children front to back and
+// skips any box farther than the hit found so far; any hit (shadow rays) stops at the first hit.
+// Robustness: a zero direction component gives an infinite inverse; where the origin lies on a
+// slab's plane that makes 0*inf = NaN, which the operand order of min/max below ignores (SSE
+// min/max return their second operand on NaN), so the ray counts as inside that slab. Box
+// exits are widened by 1+2gamma_3 so float rounding never loses a hit at a box edge (pbrt).
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+struct Aabb {
+    Vec3 lo{kInf}, hi{-kInf};
+    void grow(Vec3 p) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    void grow(const Aabb& b) { grow(b.lo); grow(b.hi); }
+    float halfArea() const {
+        Vec3 d = hi - lo;
+        return lo.x > hi.x ? 0 : d.x * d.y + d.y * d.z + d.z * d.x;
+    }
+};
+
+inline Aabb shapeBounds(const Shape& s) {
+    Aabb b;
+    if (s.type == Shape::Sphere) {
+        b.grow(s.p - Vec3(s.radius));
+        b.grow(s.p + Vec3(s.radius));
+    } else {
+        for (Vec3 c : {s.p, s.p + s.u, s.p + s.v, s.p + s.u + s.v}) b.grow(c);
+    }
+    return b;
+}
+
+// What the leaves hold: just enough to intersect, 48 bytes, in leaf order.
+struct Primitive {
+    Vec3 p, u, v, w;   // sphere: centre p, radius u.x; quad: corner p, edges u, v, w = n/(n.n)
+    int32_t shape = -1;
+    bool sphere = false;
+};
+
+inline float intersectPrimitive(const Primitive& q, const Ray& r) {
+    return q.sphere ? intersectSphere(q.p, q.u.x, r) : intersectQuad(q.p, q.u, q.v, q.w, r);
+}
+
+struct alignas(64) BvhNode {
+    float box[6][4];     // [min x, max x, min y, max y, min z, max z][child]; empty child: min > max
+    int32_t child[4];    // >= 0 inner node index; < 0 leaf: -1 - (first primitive * 8 + count)
+};
+constexpr int kMaxLeaf = 1;
+
+struct Bvh {
+    std::vector<BvhNode> nodes;
+    std::vector<Primitive> prims;
+};
+
+struct BvhBuilder {
+    const std::vector<Shape>& shapes;
+    std::vector<Aabb> bounds;
+    std::vector<Vec3> centroid;
+    std::vector<int> order;
+    Bvh& bvh;
+
+    Aabb rangeBounds(int b, int e) const {
+        Aabb box;
+        for (int i = b; i < e; ++i) box.grow(bounds[order[i]]);
+        return box;
+    }
+    int split(int b, int e) {  // binned SAH; returns the first index of the right half
+        constexpr int kBins = 16;
+        Aabb cb;
+        for (int i = b; i < e; ++i) cb.grow(centroid[order[i]]);
+        float bestCost = kInf;
+        int bestAxis = -1, bestBin = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            float lo = cb.lo[axis], extent = cb.hi[axis] - lo;
+            if (!(extent > 0)) continue;
+            Aabb bin[kBins];
+            int count[kBins] = {0};
+            for (int i = b; i < e; ++i) {
+                int k = std::min(kBins - 1, int((centroid[order[i]][axis] - lo) * (kBins / extent)));
+                bin[k].grow(bounds[order[i]]);
+                ++count[k];
+            }
+            float rightArea[kBins];
+            int rightCount[kBins];
+            Aabb acc;
+            int n = 0;
+            for (int k = kBins - 1; k > 0; --k) {
+                acc.grow(bin[k]);
+                n += count[k];
+                rightArea[k] = acc.halfArea();
+                rightCount[k] = n;
+            }
+            acc = Aabb();
+            n = 0;
+            for (int k = 0; k < kBins - 1; ++k) {
+                acc.grow(bin[k]);
+                n += count[k];
+                float cost = acc.halfArea() * n + rightArea[k + 1] * rightCount[k + 1];
+                if (n > 0 && rightCount[k + 1] > 0 && cost < bestCost) { bestCost = cost; bestAxis = axis; bestBin = k; }
+            }
+        }
+        int mid = (b + e) / 2;  // all centroids in one bin: split by count
+        if (bestAxis >= 0) {
+            float lo = cb.lo[bestAxis], scale = kBins / (cb.hi[bestAxis] - lo);
+            mid = int(std::partition(order.begin() + b, order.begin() + e, [&](int i) {
+                return std::min(kBins - 1, int((centroid[i][bestAxis] - lo) * scale)) <= bestBin;
+            }) - order.begin());
+            if (mid == b || mid == e) mid = (b + e) / 2;
+        }
+        return mid;
+    }
+    int build(int b, int e) {
+        int index = int(bvh.nodes.size());
+        bvh.nodes.emplace_back();
+        struct Range { int b, e; Aabb box; } r[4];
+        int n = 1;
+        r[0] = {b, e, rangeBounds(b, e)};
+        while (n < 4) {  // open the largest child that is too big for a leaf
+            int pick = -1;
+            for (int i = 0; i < n; ++i)
+                if (r[i].e - r[i].b > kMaxLeaf && (pick < 0 || r[i].box.halfArea() > r[pick].box.halfArea())) pick = i;
+            if (pick < 0) break;
+            int mid = split(r[pick].b, r[pick].e);
+            r[n++] = {mid, r[pick].e, rangeBounds(mid, r[pick].e)};
+            r[pick] = {r[pick].b, mid, rangeBounds(r[pick].b, mid)};
+        }
+        BvhNode node;
+        for (int i = 0; i < 4; ++i) {
+            Aabb box = i < n ? r[i].box : Aabb();
+            for (int a = 0; a < 3; ++a) {
+                node.box[2 * a][i] = box.lo[a];
+                node.box[2 * a + 1][i] = box.hi[a];
+            }
+            node.child[i] = 0;
+            if (i >= n) continue;
+            int count = r[i].e - r[i].b;
+            node.child[i] = count <= kMaxLeaf ? -1 - (r[i].b * 8 + count) : build(r[i].b, r[i].e);
+        }
+        bvh.nodes[index] = node;
+        return index;
+    }
+};
+
+inline Bvh buildBvh(const std::vector<Shape>& shapes) {
+    Bvh bvh;
+    if (shapes.empty()) return bvh;
+    BvhBuilder builder{shapes, {}, {}, {}, bvh};
+    for (const Shape& s : shapes) {
+        builder.bounds.push_back(shapeBounds(s));
+        builder.centroid.push_back((builder.bounds.back().lo + builder.bounds.back().hi) * 0.5f);
+        builder.order.push_back(int(builder.order.size()));
+    }
+    bvh.nodes.reserve(2 * shapes.size() / kMaxLeaf + 1);
+    builder.build(0, int(shapes.size()));
+    for (int i : builder.order) {
+        const Shape& s = shapes[i];
+        Primitive q;
+        q.p = s.p;
+        q.shape = i;
+        q.sphere = s.type == Shape::Sphere;
+        if (q.sphere) {
+            q.u = Vec3(s.radius);
+        } else {
+            q.u = s.u;
+            q.v = s.v;
+            q.w = quadW(s.u, s.v);
+        }
+        bvh.prims.push_back(q);
+    }
+    return bvh;
+}
+
+// The ray's constants for the slab tests.
+struct RayBoxTest {
+    int nearX, nearY, nearZ;   // which row of BvhNode::box is the entry plane on each axis
+#if defined(__SSE2__)
+    __m128 ox, oy, oz, ix, iy, iz;
+#else
+    Vec3 o, inv;
+#endif
+    explicit RayBoxTest(const Ray& r) {
+        Vec3 inv(1 / r.d.x, 1 / r.d.y, 1 / r.d.z);  // +-inf for +-0
+        nearX = inv.x >= 0 ? 0 : 1;
+        nearY = inv.y >= 0 ? 2 : 3;
+        nearZ = inv.z >= 0 ? 4 : 5;
+#if defined(__SSE2__)
+        ox = _mm_set1_ps(r.o.x); oy = _mm_set1_ps(r.o.y); oz = _mm_set1_ps(r.o.z);
+        ix = _mm_set1_ps(inv.x); iy = _mm_set1_ps(inv.y); iz = _mm_set1_ps(inv.z);
+#else
+        o = r.o;
+        this->inv = inv;
+#endif
+    }
+    // Bit i set when the ray meets child i's box within (0, tmax); tEntry receives the entry distances.
+    int test(const BvhNode& n, float tmax, float tEntry[4]) const {
+        constexpr float kWiden = 1 + 2 * (3 * 0x1p-24f) / (1 - 3 * 0x1p-24f);  // 1 + 2 gamma_3
+#if defined(__SSE2__)
+        // Each candidate (possibly NaN) is the first operand, the running bound the second.
+        __m128 t0 = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearZ]), oz), iz), _mm_setzero_ps());
+        t0 = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearY]), oy), iy), t0);
+        t0 = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearX]), ox), ix), t0);
+        __m128 t1 = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearZ ^ 1]), oz), iz), _mm_set1_ps(tmax));
+        t1 = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearY ^ 1]), oy), iy), t1);
+        t1 = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearX ^ 1]), ox), ix), t1);
+        _mm_storeu_ps(tEntry, t0);
+        return _mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(kWiden))));
+#else
+        int mask = 0;
+        for (int i = 0; i < 4; ++i) {
+            // fmax/fmin ignore a NaN operand, like the operand order of the SSE path.
+            float t0 = std::fmax(std::fmax((n.box[nearX][i] - o.x) * inv.x, (n.box[nearY][i] - o.y) * inv.y),
+                                 std::fmax((n.box[nearZ][i] - o.z) * inv.z, 0.0f));
+            float t1 = std::fmin(std::fmin((n.box[nearX ^ 1][i] - o.x) * inv.x, (n.box[nearY ^ 1][i] - o.y) * inv.y),
+                                 std::fmin((n.box[nearZ ^ 1][i] - o.z) * inv.z, tmax));
+            tEntry[i] = t0;
+            mask |= (t0 <= t1 * kWiden) << i;
+        }
+        return mask;
+#endif
+    }
+};
+
+template <bool anyHit>
+inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
+    Hit hit;
+    if (bvh.nodes.empty()) return hit;
+    RayBoxTest boxTest(ray);
+    Ray r = ray;
+    struct Entry { int32_t node; float t; } stack[256];
+    int top = 0;
+    stack[top++] = {0, 0};
+    while (top > 0) {
+        Entry e = stack[--top];
+        if (e.t > r.tmax) continue;  // a closer hit was found since this was pushed
+        const BvhNode& n = bvh.nodes[e.node];
+        float tEntry[4];
+        int base = top;
+        for (int mask = boxTest.test(n, r.tmax, tEntry); mask; mask &= mask - 1) {
+            int i = __builtin_ctz(mask);
+            if (n.child[i] < 0) {  // a leaf: test its shapes now, which may shorten the ray
+                int code = -1 - n.child[i], first = code >> 3, count = code & 7;
+                for (int k = first; k < first + count; ++k) {
+                    float t = intersectPrimitive(bvh.prims[k], r);
+                    if (t < r.tmax) {
+                        r.tmax = hit.t = t;
+                        hit.shape = bvh.prims[k].shape;
+                        if (anyHit) return hit;
+                    }
+                }
+                continue;
+            }
+            // Insert so that the nearest child ends on top of the stack (front to back).
+            int j = top++;
+            while (j > base && stack[j - 1].t < tEntry[i]) { stack[j] = stack[j - 1]; --j; }
+            stack[j] = {n.child[i], tEntry[i]};
+        }
+    }
+    return hit;
+}
 
 struct Scene {
     std::string file;
@@ -259,6 +532,7 @@ struct Scene {
     std::vector<float> lightCdf;   // cumulative Phi / total Phi, for choosing a light by power
     float totalPower = 0;
     Bvh bvh;
+    bool bruteForce = false;           // true: the plain loop over shapes, for tests and teaching
     // Deliberate mistakes for the lecture (section 4): each defaults to the physically right rule.
     bool adjointCorrection = true;     // false: --no-adjoint-correction
     bool symmetricRefraction = false;  // true: --symmetric-refraction
@@ -278,9 +552,13 @@ inline bool occludedBruteForce(const std::vector<Shape>& shapes, const Ray& ray)
         if (intersectShape(s, ray) < ray.tmax) return true;
     return false;
 }
-inline void buildAcceleration(Scene&) {}
-inline Hit intersect(const Scene& scene, const Ray& ray) { return intersectBruteForce(scene.shapes, ray); }
-inline bool occluded(const Scene& scene, const Ray& ray) { return occludedBruteForce(scene.shapes, ray); }
+inline void buildAcceleration(Scene& scene) { scene.bvh = buildBvh(scene.shapes); }
+inline Hit intersect(const Scene& scene, const Ray& ray) {
+    return scene.bruteForce ? intersectBruteForce(scene.shapes, ray) : traverseBvh<false>(scene.bvh, ray);
+}
+inline bool occluded(const Scene& scene, const Ray& ray) {
+    return scene.bruteForce ? occludedBruteForce(scene.shapes, ray) : traverseBvh<true>(scene.bvh, ray).found();
+}
 inline SurfacePoint surfaceAt(const Scene& scene, const Ray& ray, const Hit& hit) {
     return makeSurfacePoint(scene.shapes[hit.shape], hit.shape, ray.o + hit.t * ray.d);
 }
@@ -1053,6 +1331,186 @@ inline std::string replaceExtension(const std::string& path, const std::string& 
     return (hasExt ? path.substr(0, dot) : path) + ext;
 }
 
+// Ray-tracing benchmark (--bench-rays): exactly the scenes and rays of ../shared/perf/README.md,
+// so the BVH's Mrays/s stand beside Embree's measured in the same run, in the same line format.
+struct SplitMix64 {
+    uint64_t s;
+    uint64_t next() {
+        uint64_t z = (s += 0x9E3779B97F4A7C15ULL);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+        return z ^ (z >> 31);
+    }
+    double u() { return double(next() >> 40) * 0x1p-24; }
+};
+
+struct BenchScene {
+    std::string name;
+    std::vector<Shape> shapes;
+    Vec3 camera;
+    float boxSize;
+};
+
+inline Shape benchQuad(Vec3 q, Vec3 u, Vec3 v) {
+    Shape s;
+    s.type = Shape::Quad;
+    s.p = q; s.u = u; s.v = v;
+    return s;
+}
+inline Shape benchSphere(Vec3 c, float r) {
+    Shape s;
+    s.p = c;
+    s.radius = r;
+    return s;
+}
+
+inline BenchScene benchCornell() {
+    BenchScene b{"cornell", {}, Vec3(278, 278, -800), 555};
+    b.shapes = {benchQuad({555, 0, 0}, {0, 555, 0}, {0, 0, 555}), benchQuad({0, 0, 0}, {0, 555, 0}, {0, 0, 555}),
+                benchQuad({343, 554, 332}, {-130, 0, 0}, {0, 0, -105}), benchQuad({0, 0, 0}, {555, 0, 0}, {0, 0, 555}),
+                benchQuad({555, 555, 555}, {-555, 0, 0}, {0, 0, -555}), benchQuad({0, 0, 555}, {555, 0, 0}, {0, 555, 0}),
+                benchSphere({190, 90, 190}, 90), benchSphere({370, 110, 370}, 110)};
+    return b;
+}
+
+inline BenchScene benchStress(uint64_t seed, int n) {
+    BenchScene b{"stress", {}, Vec3(0.5f, 0.5f, -1.5f), 1};
+    SplitMix64 g{seed ^ 0x1111111111111111ULL};
+    for (int i = 0; i < n; ++i) {
+        float x = float(g.u()), y = float(g.u()), z = float(g.u());
+        b.shapes.push_back(benchSphere({x, y, z}, float(0x1p-10 + 0x1p-8 * g.u())));
+    }
+    for (int i = 0; i < n; ++i) {
+        float v[9];
+        for (int k = 0; k < 9; ++k) v[k] = float(k < 3 ? g.u() : (g.u() - 0.5) * 0x1p-6);
+        b.shapes.push_back(benchQuad({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}));
+    }
+    return b;
+}
+
+inline Vec3 unitFloat(double x, double y, double z) {
+    double l = std::sqrt(x * x + y * y + z * z);
+    return Vec3(float(x / l), float(y / l), float(z / l));
+}
+
+inline std::vector<Ray> benchPrimaryRays(const BenchScene& b, size_t m) {
+    std::vector<Ray> rays(m);
+    double h = std::tan(40 * 3.14159265358979323846 / 180 / 2);
+    for (size_t k = 0; k < m; ++k) {
+        size_t p = k >> 2, i = p % 1024, j = p / 1024, s = k & 3;
+        double sx = (s & 1) ? 0.75 : 0.25, sy = (s & 2) ? 0.75 : 0.25;
+        rays[k] = {b.camera, unitFloat(-(2 * (i + sx) / 1024 - 1) * h, (1 - 2 * (j + sy) / 1024) * h, 1), kInf};
+    }
+    return rays;
+}
+
+inline std::vector<Ray> benchIncoherentRays(const BenchScene& b, uint64_t seed, size_t m) {
+    std::vector<Ray> rays(m);
+    SplitMix64 g{seed ^ 0x2222222222222222ULL};
+    for (size_t k = 0; k < m; ++k) {
+        double L = b.boxSize;
+        float ox = float(L * g.u()), oy = float(L * g.u()), oz = float(L * g.u());  // in this order
+        double x, y, z, l2;
+        do {
+            x = 2 * g.u() - 1; y = 2 * g.u() - 1; z = 2 * g.u() - 1;
+            l2 = (x * x + y * y) + z * z;
+        } while (l2 < 1e-6 || l2 > 1);
+        rays[k] = {Vec3(ox, oy, oz), unitFloat(x, y, z), kInf};
+    }
+    return rays;
+}
+
+struct BenchRun {
+    double seconds = 0, cpuSeconds = 0, sumT = 0;
+    unsigned long long hits = 0, sphereHits = 0;
+};
+
+inline double threadCpuSeconds() {
+    timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+// 64 blocks of rays, contiguous block ranges per thread, per-block sums added in block order:
+// the checksums are the same for any thread count.
+inline BenchRun benchTrace(const Bvh& bvh, const std::vector<Shape>& shapes, const std::vector<Ray>& rays, int threads, bool anyHit) {
+    const int kBlocks = 64;
+    size_t blockSize = (rays.size() + kBlocks - 1) / kBlocks;
+    std::vector<double> blockSum(kBlocks, 0.0), cpu(threads, 0.0);
+    std::vector<unsigned long long> blockHits(kBlocks, 0), blockSpheres(kBlocks, 0);
+    auto work = [&](int t) {
+#if defined(__SSE2__)
+        _mm_setcsr(_mm_getcsr() | 0x8040);  // flush denormals to zero, as Embree requires
+#endif
+        double c0 = threadCpuSeconds();
+        for (int blk = kBlocks * t / threads; blk < kBlocks * (t + 1) / threads; ++blk) {
+            double sum = 0;
+            unsigned long long hits = 0, spheres = 0;
+            for (size_t k = blk * blockSize; k < std::min(rays.size(), (blk + 1) * blockSize); ++k) {
+                Hit h = anyHit ? traverseBvh<true>(bvh, rays[k]) : traverseBvh<false>(bvh, rays[k]);
+                if (!h.found()) continue;
+                ++hits;
+                sum += h.t;
+                spheres += shapes[h.shape].type == Shape::Sphere;
+            }
+            blockSum[blk] = sum; blockHits[blk] = hits; blockSpheres[blk] = spheres;
+        }
+        cpu[t] = threadCpuSeconds() - c0;
+    };
+    auto t0 = std::chrono::steady_clock::now();
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    work(0);
+    for (std::thread& th : pool) th.join();
+    BenchRun r;
+    r.seconds = secondsSince(t0);
+    r.cpuSeconds = *std::max_element(cpu.begin(), cpu.end());
+    for (int b = 0; b < kBlocks; ++b) { r.sumT += blockSum[b]; r.hits += blockHits[b]; r.sphereHits += blockSpheres[b]; }
+    return r;
+}
+
+inline double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+inline void runRayBenchmark(std::ostream& out, uint64_t seed, int n, size_t m, int reps) {
+    for (const BenchScene& b : {benchCornell(), benchStress(seed, n)}) {
+        std::vector<double> ms;
+        Bvh bvh;
+        for (int r = 0; r < reps; ++r) {
+            auto t0 = std::chrono::steady_clock::now();
+            bvh = buildBvh(b.shapes);
+            ms.push_back(1e3 * secondsSince(t0));
+        }
+        char line[512];
+        std::snprintf(line, sizeof line, "bdpt scene=%s kind=build threads=1 prims=%zu build_ms=%.3f build_ms_min=%.3f nodes=%zu\n",
+                      b.name.c_str(), b.shapes.size(), median(ms), *std::min_element(ms.begin(), ms.end()), bvh.nodes.size());
+        out << line << std::flush;
+        std::vector<Ray> primary = benchPrimaryRays(b, m), incoherent = benchIncoherentRays(b, seed, m);
+        struct Set { const char* kind; const std::vector<Ray>* rays; bool anyHit; };
+        for (Set set : {Set{"primary", &primary, false}, Set{"incoherent", &incoherent, false}, Set{"occluded", &incoherent, true}}) {
+            benchTrace(bvh, b.shapes, *set.rays, 2, set.anyHit);  // warm-up
+            for (int threads : {1, 2}) {
+                std::vector<double> mr, mc;
+                BenchRun last;
+                for (int r = 0; r < reps; ++r) {
+                    last = benchTrace(bvh, b.shapes, *set.rays, threads, set.anyHit);
+                    mr.push_back(set.rays->size() / last.seconds * 1e-6);
+                    mc.push_back(set.rays->size() / last.cpuSeconds * 1e-6);
+                }
+                std::snprintf(line, sizeof line,
+                              "bdpt scene=%s kind=%s threads=%d mrays=%.3f mrays_min=%.3f mrays_max=%.3f cpu_mrays=%.3f "
+                              "rays=%zu hits=%llu sum_t=%.9e sphere_hits=%llu\n",
+                              b.name.c_str(), set.kind, threads, median(mr), *std::min_element(mr.begin(), mr.end()),
+                              *std::max_element(mr.begin(), mr.end()), median(mc), set.rays->size(), last.hits,
+                              set.anyHit ? 0.0 : last.sumT, set.anyHit ? 0ULL : last.sphereHits);
+                out << line << std::flush;
+            }
+        }
+    }
+}
+
 // == 10. Command line ===========================================================================
 const char* kUsage = R"(usage: bdpt SCENE [options]
 Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)
@@ -1074,6 +1532,11 @@ Output
   --exposure STOPS  scale the PNG by 2^STOPS (the PFM stays linear)
   --quiet           no progress bar and no summary line
   --help            this text
+Benchmark (no scene file)
+  --bench-rays      trace the rays of ../shared/perf/README.md through the BVH and print Mrays/s
+                    in embree_bench's line format; with --bench-n N (shapes of each kind in the
+                    stress scene, default 100000), --bench-m M (rays per set, default 4194304),
+                    --bench-reps R (default 5), --seed S (default 1)
 Exit status: 0 done, 1 an output file could not be written, 2 bad scene file or option.
 )";
 
@@ -1081,7 +1544,9 @@ struct CommandLine {
     std::string scenePath, out = "render.png";
     RenderOptions opt;
     int width = 0, height = 0;
-    bool help = false;
+    bool help = false, benchRays = false;
+    int benchN = 100000, benchReps = 5;
+    size_t benchM = 4194304;
 };
 
 inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
@@ -1123,6 +1588,10 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (a == "--out") cl.out = value(i);
         else if (a == "--exposure") cl.opt.exposure = float(number(i, -50, 50));
         else if (a == "--quiet") cl.opt.quiet = true;
+        else if (a == "--bench-rays") cl.benchRays = true;
+        else if (a == "--bench-n") cl.benchN = int(integer(i, 1, 1e7));
+        else if (a == "--bench-m") cl.benchM = size_t(integer(i, 64, 1e9));
+        else if (a == "--bench-reps") cl.benchReps = int(integer(i, 1, 1000));
         else if (a == "--res") {
             std::string v = value(i);
             int w = 0, h = 0;
@@ -1135,7 +1604,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (cl.scenePath.empty()) cl.scenePath = a;
         else fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
     }
-    if (!cl.help && cl.scenePath.empty()) fail("no scene file given");
+    if (!cl.help && !cl.benchRays && cl.scenePath.empty()) fail("no scene file given");
     if (!cl.help && replaceExtension(cl.out, ".pfm") == cl.out) fail("--out must not end in .pfm (the PFM goes beside the PNG)");
     return cl;
 }
@@ -1153,6 +1622,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     try {
         cl = parseCommandLine(args);
         if (cl.help) { out << kUsage; return 0; }
+        if (cl.benchRays) { runRayBenchmark(out, cl.opt.seed, cl.benchN, cl.benchM, cl.benchReps); return 0; }
         scene = loadScene(cl.scenePath);
     } catch (const InputError& e) {
         err << e.what() << "\n";

@@ -6,15 +6,15 @@ TEST_CASE("ray-sphere: outside, inside, miss, and the far side only when the nea
     s.type = Shape::Sphere;
     s.p = Vec3(0, 0, 0);
     s.radius = 1;
-    CHECK(intersectSphere(s, {Vec3(0, 0, -5), Vec3(0, 0, 1), kInf}) == doctest::Approx(4.0f));
-    CHECK(intersectSphere(s, {Vec3(0, 0, 0), Vec3(0, 0, 1), kInf}) == doctest::Approx(1.0f));  // from inside
-    CHECK(intersectSphere(s, {Vec3(0, 1.01f, -5), Vec3(0, 0, 1), kInf}) == kInf);
-    CHECK(intersectSphere(s, {Vec3(0, 0, 5), Vec3(0, 0, 1), kInf}) == kInf);                  // behind
-    CHECK(intersectSphere(s, {Vec3(0, 0, -5), Vec3(0, 0, 1), 3.9f}) == kInf);                 // tmax
+    CHECK(intersectSphere(s.p, s.radius, {Vec3(0, 0, -5), Vec3(0, 0, 1), kInf}) == doctest::Approx(4.0f));
+    CHECK(intersectSphere(s.p, s.radius, {Vec3(0, 0, 0), Vec3(0, 0, 1), kInf}) == doctest::Approx(1.0f));  // from inside
+    CHECK(intersectSphere(s.p, s.radius, {Vec3(0, 1.01f, -5), Vec3(0, 0, 1), kInf}) == kInf);
+    CHECK(intersectSphere(s.p, s.radius, {Vec3(0, 0, 5), Vec3(0, 0, 1), kInf}) == kInf);                  // behind
+    CHECK(intersectSphere(s.p, s.radius, {Vec3(0, 0, -5), Vec3(0, 0, 1), 3.9f}) == kInf);                 // tmax
     // Far away and small: the precision fix keeps the hit within float rounding of the truth.
     s.p = Vec3(0, 0, 1e4f);
     s.radius = 0.5f;
-    CHECK(intersectSphere(s, {Vec3(0, 0, 0), Vec3(0, 0, 1), kInf}) == doctest::Approx(9999.5f).epsilon(1e-6));
+    CHECK(intersectSphere(s.p, s.radius, {Vec3(0, 0, 0), Vec3(0, 0, 1), kInf}) == doctest::Approx(9999.5f).epsilon(1e-6));
     // A ray leaving a surface point, pushed off by offsetPoint, does not hit its own sphere.
     s.p = Vec3(0, 0, 0);
     s.radius = 300;
@@ -24,7 +24,7 @@ TEST_CASE("ray-sphere: outside, inside, miss, and the far side only when the nea
         Vec3 n = sampleUniformSphere(rng.uniform(), rng.uniform());
         SurfacePoint sp = makeSurfacePoint(s, 0, s.p + s.radius * n);
         Vec3 d = Frame(sp.ng).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
-        selfHits += intersectSphere(s, spawnRay(sp, d)) < kInf;
+        selfHits += intersectSphere(s.p, s.radius, spawnRay(sp, d)) < kInf;
     }
     CHECK(selfHits == 0);
 }
