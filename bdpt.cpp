@@ -610,12 +610,15 @@ inline float adjointCorrection(const Scene& scene, const SurfacePoint& sp, Vec3 
 }
 
 // Non-delta part only: mirrors and glass return 0 (a connection cannot hit a delta direction).
+// A reflection needs wo and wi on one side of the geometric surface (no light leaks) and both
+// above the shading normal: the shading BSDF is then symmetric, and its adjoint differs only by
+// the correction factor, so radiance and importance transport agree on where it vanishes.
 inline Vec3 evalBsdfCos(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode) {
     const Material& m = scene.materials[scene.shapes[sp.shape].material];
     if (isSpecular(m) || dot(wo, sp.ng) * dot(wi, sp.ng) <= 0) return Vec3(0);  // no light leaks
     Vec3 n = facingShadingNormal(sp, wo);
     float cosI = dot(wi, n);
-    if (cosI <= 0) return Vec3(0);
+    if (cosI <= 0 || dot(wo, n) <= 0) return Vec3(0);
     float f = 1 / kPi;  // Lambert: f = rho/pi
     if (m.type == Material::Glossy) {  // normalized Phong: f = rho (n+2)/(2 pi) cos^n(alpha)
         float cosA = dot(wi, reflect(wo, n));
@@ -629,6 +632,7 @@ inline float pdfBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 w
     const Material& m = scene.materials[scene.shapes[sp.shape].material];
     if (isSpecular(m) || dot(wo, sp.ng) * dot(wi, sp.ng) <= 0) return 0;
     Vec3 n = facingShadingNormal(sp, wo);
+    if (dot(wo, n) <= 0) return 0;
     if (m.type == Material::Diffuse) return std::max(0.0f, dot(wi, n)) / kPi;
     float cosA = dot(wi, reflect(wo, n));
     return cosA <= 0 ? 0 : (m.exponent + 1) / (2 * kPi) * std::pow(cosA, m.exponent);
@@ -639,6 +643,7 @@ inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Tran
     Vec3 n = facingShadingNormal(sp, wo);
     float u1 = rng.uniform(), u2 = rng.uniform();
     bs.delta = isSpecular(m);
+    if (dot(wo, n) <= 0) return false;  // below the shading hemisphere: nothing scatters
     if (m.type == Material::Diffuse || m.type == Material::Glossy) {
         Vec3 axis = m.type == Material::Diffuse ? n : reflect(wo, n);
         Vec3 local = m.type == Material::Diffuse ? sampleCosineHemisphere(u1, u2) : samplePowerCosine(u1, u2, m.exponent);
@@ -1031,7 +1036,7 @@ inline Scene loadScene(const std::string& path) {
 // Every method is one function of the same shape over the shared pieces above, so that a diff of
 // two methods shows how they differ. Paths are counted in bounces (scattering vertices): a path
 // of k segments has k-1 bounces, and --maxdepth D keeps paths with at most D bounces.
-enum class Method { PT, NEE };
+enum class Method { PT, NEE, LT, IR };
 
 struct RenderOptions {
     Method method = Method::NEE;
@@ -1044,12 +1049,21 @@ struct RenderOptions {
     int rrStart = 3;           // Russian roulette from this many bounces on
     float exposure = 0;        // stops, for the PNG only
     bool quiet = false;
+    int vplPaths = 16;         // ir: light paths traced per pass, each leaving VPLs
+    float clamp = 0;           // ir: > 0 bounds the geometry term G at this value
     std::function<void(int pass, const std::vector<Vec3>& passImage)> onPass;  // after each pass
 };
 
 struct Splat {                 // a light-path contribution that lands on some pixel
     int pixel;
     Vec3 value;
+};
+
+// What one image row's samples leave besides their pixels' values; rows are merged in order.
+struct RowOutput {
+    std::vector<Splat> splats;
+    long long nonFinite = 0;
+    double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: what the clamp removed
 };
 
 // Russian roulette ("Path tracing with Russian roulette"): continue with probability q and divide
@@ -1143,15 +1157,196 @@ inline Vec3 radianceNEE(const Scene& scene, const RenderOptions& opt, Ray ray, R
     return L;
 }
 
-// One sample of pixel (x, y): what a camera path brings back; light paths add Splats elsewhere.
-inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, int x, int y, Rng& rng, std::vector<Splat>&) {
+// -- The camera connection shared by light tracing and BDPT's t=1 strategy. For a point x seen
+// by the pinhole, W_j(x->eye) G(x,eye) with the camera-side cosine: W_j cos_cam / d^2, divided by
+// the number of light paths per pass (one per pixel, so the W*H in W_j cancels it: pitfall 1 of
+// light tracing is to forget either). The scene-side cosine stays with the caller (section 4).
+struct CameraConnection {
+    int pixel = -1;          // -1: behind the camera, outside the image, or occluded
+    Vec3 toCamera;           // unit direction from x to the pinhole
+    float importance = 0;    // W_j cos_cam / (d^2 N_lightpaths)
+};
+
+inline CameraConnection connectToCamera(const Scene& scene, Vec3 p, Vec3 ng) {
+    CameraConnection c;
+    const Camera& cam = scene.camera;
+    float fx, fy;
+    if (!projectToFilm(cam, p, fx, fy)) return c;
+    Vec3 d = cam.eye - p;
+    float dist2 = dot(d, d);
+    c.toCamera = d / std::sqrt(dist2);
+    float cosCamera = dot(-c.toCamera, cam.forward);
+    float lightPathsPerPass = float(cam.width) * cam.height;
+    c.importance = pixelImportance(cam, -c.toCamera) * cosCamera / (dist2 * lightPathsPerPass);
+    if (occluded(scene, shadowRay(p, ng, cam.eye, Vec3(0)))) return c;
+    c.pixel = std::min(int(fy), cam.height - 1) * cam.width + std::min(int(fx), cam.width - 1);
+    return c;
+}
+
+// The light vertex's own contribution to the camera (s=1, t=1): Le(y->eye) |cos_y| / p_A(y).
+inline void splatLightVertex(const Scene& scene, const LightPoint& lp, std::vector<Splat>& splats) {
+    CameraConnection c = connectToCamera(scene, lp.p, lp.n);
+    if (c.pixel < 0) return;
+    float cosLight = lp.deltaPosition ? 1 : dot(lp.n, c.toCamera);
+    if (cosLight > 0) splats.push_back({c.pixel, lp.emission * (cosLight * c.importance / lp.pdfArea)});
+}
+
+// -- (c) lt: "next event (light tracing)". Paths start on the lights with p(x,Theta) = Le|cos|/Phi
+// and every vertex is connected to the pinhole (p_{k,k}... the strategies with one camera
+// vertex). Importance flows here, so BSDFs are sampled in Transport::Importance. It renders the
+// floor caustic under the glass sphere (light -> glass -> floor -> eye) that eye paths find only
+// by hitting the light after the refraction (pt, nee: noisy) and never for a point light: no
+// connection can pass through glass, but a light path goes through it by sampling alone.
+inline void traceLightPath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<Splat>& splats) {
+    EmissionSample es = sampleEmission(scene, rng);
+    splatLightVertex(scene, es.point, splats);
+    Vec3 beta = es.weight;
+    Ray ray{es.point.deltaPosition ? es.point.p : offsetPoint(es.point.p, es.point.n, es.dir), es.dir, kInf};
+    for (int bounces = 1; bounces <= opt.maxDepth && !isBlack(beta); ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        SurfacePoint sp = surfaceAt(scene, ray, hit);
+        Vec3 wo = -ray.d;  // toward the light
+        if (!isSpecular(scene.materials[scene.shapes[sp.shape].material])) {
+            CameraConnection c = connectToCamera(scene, sp.p, sp.ng);
+            if (c.pixel >= 0)
+                splats.push_back({c.pixel, beta * evalBsdfCos(scene, sp, wo, c.toCamera, Transport::Importance) * c.importance});
+        }
+        BsdfSample bs;
+        if (!sampleBsdf(scene, sp, wo, Transport::Importance, rng, bs)) break;
+        beta *= bs.weight;
+        if (!russianRoulette(beta, bounces, opt, rng)) break;
+        ray = spawnRay(sp, bs.wi);
+    }
+}
+
+// -- (d), (e) ir: "instant radiosity" (Keller 1997), "(clamped)". A few light paths leave virtual
+// point lights (VPLs) at their non-specular vertices; the first non-specular vertex x of a camera
+// path gathers from all of them:
+//   sum_VPL  beta_y / N  f_y(y->x) f_x(y->x->eye) G(x,y) V(x,y)
+// Unbiased for the paths it can make, but G = cos cos / d^2 is unbounded where x and y come close
+// (corners): the bright splotches of panel (d). --clamp C replaces G by min(G, C): panel (e),
+// smooth but darker, and the loss does not shrink with more passes (bias, pitfall 5).
+struct Vpl {
+    SurfacePoint sp;    // sp.shape = -1 for a point light
+    Vec3 wo;            // toward the light (zero for a light vertex)
+    Vec3 beta;          // light-path throughput arriving at y, over the number of VPL paths
+    LightPoint light;   // for a vertex on a light: its emission
+    int bounces = 0;    // scattering vertices before y on its light path
+    bool onLight = false;
+};
+
+inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, int pass) {
+    std::vector<Vpl> vpls;
+    for (int i = 0; i < opt.vplPaths; ++i) {
+        Rng rng = makeRng(opt.seed ^ 0x5bd1e995ULL, uint64_t(i), uint64_t(pass));
+        EmissionSample es = sampleEmission(scene, rng);
+        Vpl v;
+        v.onLight = true;
+        v.light = es.point;
+        v.light.emission = v.light.emission / float(opt.vplPaths);
+        vpls.push_back(v);
+        Vec3 beta = es.weight / float(opt.vplPaths);
+        Ray ray{es.point.deltaPosition ? es.point.p : offsetPoint(es.point.p, es.point.n, es.dir), es.dir, kInf};
+        for (int bounces = 1; bounces < opt.maxDepth; ++bounces) {
+            Hit hit = intersect(scene, ray);
+            if (!hit.found()) break;
+            Vpl y;
+            y.sp = surfaceAt(scene, ray, hit);
+            y.wo = -ray.d;
+            y.beta = beta;
+            y.bounces = bounces;
+            if (!isSpecular(scene.materials[scene.shapes[y.sp.shape].material])) vpls.push_back(y);
+            BsdfSample bs;
+            if (!sampleBsdf(scene, y.sp, y.wo, Transport::Importance, rng, bs)) break;
+            beta *= bs.weight;
+            if (!russianRoulette(beta, bounces, opt, rng)) break;
+            ray = spawnRay(y.sp, bs.wi);
+        }
+    }
+    return vpls;
+}
+
+inline Vec3 gatherVpls(const Scene& scene, const RenderOptions& opt, const std::vector<Vpl>& vpls, const SurfacePoint& x,
+                       Vec3 wo, int cameraBounces, RowOutput& out) {
+    Vec3 sum(0);
+    for (const Vpl& v : vpls) {
+        if (v.bounces + cameraBounces + 1 > opt.maxDepth) continue;
+        Vec3 yPos = v.onLight ? v.light.p : v.sp.p, yNormal = v.onLight ? v.light.n : v.sp.ng;
+        Vec3 d = yPos - x.p;
+        float dist2 = dot(d, d);
+        if (!(dist2 > 0)) continue;
+        Vec3 wi = d / std::sqrt(dist2);
+        Vec3 fx = evalBsdfCos(scene, x, wo, wi, Transport::Radiance);
+        if (isBlack(fx)) continue;
+        Vec3 fy;  // the VPL's side, cosine included
+        if (v.onLight) {
+            float cosLight = v.light.deltaPosition ? 1 : dot(v.light.n, -wi);
+            if (cosLight <= 0) continue;
+            fy = v.light.emission * (cosLight / v.light.pdfArea);
+        } else {
+            fy = v.beta * evalBsdfCos(scene, v.sp, v.wo, -wi, Transport::Importance);
+        }
+        if (isBlack(fy) || occluded(scene, shadowRay(x.p, x.ng, yPos, yNormal))) continue;
+        Vec3 c = fx * fy / dist2;
+        if (opt.clamp > 0) {
+            float G = absDot(wi, x.ng) * (isBlack(yNormal) ? 1 : absDot(wi, yNormal)) / dist2;
+            double before = average(c);
+            if (G > opt.clamp) c *= opt.clamp / G;
+            out.energyUnclamped += before;
+            out.energyClamped += average(c);
+        }
+        sum += c;
+    }
+    return sum;
+}
+
+// The camera half of ir: follow specular bounces, gather at the first non-specular vertex.
+inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rng& rng, const std::vector<Vpl>& vpls,
+                       RowOutput& out) {
+    Vec3 L(0), beta(1);
+    for (int bounces = 0; bounces <= opt.maxDepth; ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        SurfacePoint sp = surfaceAt(scene, ray, hit);
+        Vec3 wo = -ray.d;
+        L += beta * emittedRadiance(scene, sp, wo);
+        if (!isSpecular(scene.materials[scene.shapes[sp.shape].material]))
+            return L + beta * gatherVpls(scene, opt, vpls, sp, wo, bounces, out);
+        BsdfSample bs;
+        if (bounces == opt.maxDepth || !sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
+        beta *= bs.weight;
+        ray = spawnRay(sp, bs.wi);
+    }
+    return L;
+}
+
+// What every method shares for one pass, computed before the pixels (ir's VPLs).
+struct PassData {
+    std::vector<Vpl> vpls;
+};
+
+inline PassData preparePass(const Scene& scene, const RenderOptions& opt, int pass) {
+    PassData data;
+    if (opt.method == Method::IR) data.vpls = traceVpls(scene, opt, pass);
+    return data;
+}
+
+// One sample of pixel (x, y): what a camera path brings back; light paths add splats instead.
+inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng,
+                        RowOutput& out) {
+    if (opt.method == Method::LT) {  // this pixel's random stream drives one light path
+        traceLightPath(scene, opt, rng, out.splats);
+        return Vec3(0);
+    }
     float fx = x + rng.uniform(), fy = y + rng.uniform();
     Ray ray = cameraRay(scene.camera, fx, fy);
     switch (opt.method) {
         case Method::PT: return radiancePT(scene, opt, ray, rng);
         case Method::NEE: return radianceNEE(scene, opt, ray, rng);
+        case Method::IR: return radianceIR(scene, opt, ray, rng, pass.vpls, out);
+        default: return Vec3(0);
     }
-    return Vec3(0);
 }
 
 // == 9. Film, rendering loop, image files =======================================================
@@ -1181,6 +1376,7 @@ struct RenderResult {
     long long nonFinite = 0;        // NaN/inf samples and splats dropped
     double seconds = 0;
     std::vector<double> passMeans;  // each pass's image mean: independent samples of the mean
+    double clampRemoved = 0;        // ir --clamp: fraction of the gathered energy the clamp removed
     bool interrupted = false;
 };
 
@@ -1210,8 +1406,8 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
     int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     std::vector<double> sum(size_t(W) * H * 3, 0.0), sumSq(sum.size(), 0.0);
     std::vector<Vec3> pass(size_t(W) * H);
-    std::vector<std::vector<Splat>> rowSplats(H);
-    std::vector<long long> rowNonFinite(H);
+    std::vector<RowOutput> rows(H);
+    double energyUnclamped = 0, energyClamped = 0;
     RenderResult result;
     ProgressBar bar;
     bar.enabled = !opt.quiet && isatty(2);
@@ -1220,15 +1416,18 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
         return opt.seconds > 0 ? secondsSince(t0) / opt.seconds : passesDone / std::max(1, opt.spp);
     };
     for (int p = 0; opt.seconds > 0 ? (p == 0 || secondsSince(t0) < opt.seconds) : p < opt.spp; ++p) {
+        PassData passData = preparePass(scene, opt, p);
         std::atomic<int> nextRow{0};
         auto worker = [&](int id) {
             for (int y; (y = nextRow.fetch_add(1)) < H;) {
-                rowSplats[y].clear();
-                rowNonFinite[y] = 0;
+                RowOutput& row = rows[y];
+                row.splats.clear();
+                row.nonFinite = 0;
+                row.energyUnclamped = row.energyClamped = 0;
                 for (int x = 0; x < W; ++x) {
                     Rng rng = makeRng(opt.seed, uint64_t(y) * W + x, uint64_t(p));
-                    Vec3 v = samplePixel(scene, opt, x, y, rng, rowSplats[y]);
-                    if (!isFinite(v)) { v = Vec3(0); ++rowNonFinite[y]; }
+                    Vec3 v = samplePixel(scene, opt, passData, x, y, rng, row);
+                    if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
                     pass[size_t(y) * W + x] = v;
                 }
                 if (id == 0) {
@@ -1243,8 +1442,10 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
         for (std::thread& t : pool) t.join();
         double passSum = 0;
         for (int y = 0; y < H; ++y) {
-            result.nonFinite += rowNonFinite[y];
-            for (const Splat& s : rowSplats[y]) {
+            result.nonFinite += rows[y].nonFinite;
+            energyUnclamped += rows[y].energyUnclamped;
+            energyClamped += rows[y].energyClamped;
+            for (const Splat& s : rows[y].splats) {
                 if (isFinite(s.value)) pass[s.pixel] += s.value;
                 else ++result.nonFinite;
             }
@@ -1261,6 +1462,7 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
         result.passes = p + 1;
     }
     result.seconds = secondsSince(t0);
+    result.clampRemoved = energyUnclamped > 0 ? 1 - energyClamped / energyUnclamped : 0;
     bar.show(1, result.passes, 0);
     result.image = result.variance = Image(W, H);
     const double n = result.passes;
@@ -1519,8 +1721,16 @@ and, beside it, a PFM with the linear values.
 Method
   --method M        pt   (a) eye tracing: emission counted only when a path hits a light
                     nee  (b) path tracing with next-event estimation (default)
+                    lt   (c) light tracing: light paths splatted onto the film
+                    ir   (d) instant radiosity: camera paths gather virtual point lights
   --mis             nee: weight light and BSDF sampling with the power heuristic
+  --vpls N          ir: light paths traced per pass, each leaving VPLs (default 16)
+  --clamp C         ir: bound the geometry term G by C (panel (e)); prints the energy removed
   --maxdepth D      at most D bounces (scattering vertices) per path (default 32)
+Deliberate mistakes (slides: "Non-symmetric scattering")
+  --symmetric-refraction   reuse one BTDF for both transports: eye paths scale refracted
+                    radiance like power (no eta^2), light paths scale power like radiance
+  --no-adjoint-correction  light paths use the shading-normal BSDF unchanged (not its adjoint)
 Sampling
   --spp N           N passes of one sample per pixel (default 16)
   --time SECONDS    render passes until SECONDS have passed (replaces --spp)
@@ -1544,7 +1754,7 @@ struct CommandLine {
     std::string scenePath, out = "render.png";
     RenderOptions opt;
     int width = 0, height = 0;
-    bool help = false, benchRays = false;
+    bool help = false, benchRays = false, symmetricRefraction = false, noAdjointCorrection = false;
     int benchN = 100000, benchReps = 5;
     size_t benchM = 4194304;
 };
@@ -1578,8 +1788,14 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             std::string m = value(i);
             if (m == "pt") cl.opt.method = Method::PT;
             else if (m == "nee") cl.opt.method = Method::NEE;
-            else fail("unknown method '" + printable(m) + "' (pt, nee)");
+            else if (m == "lt") cl.opt.method = Method::LT;
+            else if (m == "ir") cl.opt.method = Method::IR;
+            else fail("unknown method '" + printable(m) + "' (pt, nee, lt, ir)");
         } else if (a == "--mis") cl.opt.mis = true;
+        else if (a == "--vpls") cl.opt.vplPaths = int(integer(i, 1, 1e6));
+        else if (a == "--clamp") cl.opt.clamp = float(number(i, 1e-30, 1e30));
+        else if (a == "--symmetric-refraction") cl.symmetricRefraction = true;
+        else if (a == "--no-adjoint-correction") cl.noAdjointCorrection = true;
         else if (a == "--maxdepth") cl.opt.maxDepth = int(integer(i, 0, 10000));
         else if (a == "--spp") cl.opt.spp = int(integer(i, 1, 1e8));
         else if (a == "--time") cl.opt.seconds = number(i, 1e-3, 1e7);
@@ -1629,6 +1845,8 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         return 2;
     }
     if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
+    scene.symmetricRefraction = cl.symmetricRefraction;
+    scene.adjointCorrection = !cl.noAdjointCorrection;
     RenderResult r = render(scene, cl.opt);
     std::string pfm = replaceExtension(cl.out, ".pfm");
     if (!writePNG(r.image, cl.out, cl.opt.exposure) || !writePFM(r.image, pfm)) {
@@ -1639,6 +1857,8 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     if (!cl.opt.quiet)
         out << cl.scenePath << ": " << r.passes << " samples per pixel in " << r.seconds << " s, mean " << imageMean(r.image)
             << ", " << r.nonFinite << " non-finite samples dropped; wrote " << cl.out << " and " << pfm << "\n";
+    if (!cl.opt.quiet && cl.opt.method == Method::IR && cl.opt.clamp > 0)
+        out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved << "% of the energy gathered from VPLs\n";
     return 0;
 }
 

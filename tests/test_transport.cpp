@@ -1,0 +1,217 @@
+// Light tracing, instant radiosity, and where transport is not symmetric: refraction (eta^2) and
+// shading normals (the adjoint BSDF). (Issue: light tracing, instant radiosity, non-symmetric
+// scattering.)
+#include "helpers.h"
+
+static Scene oneQuadScene(Material m) {
+    Scene s;
+    s.materials.push_back(m);
+    Shape q;
+    q.type = Shape::Quad;
+    q.p = Vec3(-1, -1, 0);
+    q.u = Vec3(2, 0, 0);
+    q.v = Vec3(0, 2, 0);
+    q.normal = Vec3(0, 0, 1);
+    q.area = 4;
+    s.shapes.push_back(q);
+    return s;
+}
+static SurfacePoint pointWithNormals(Vec3 ng, Vec3 ns) {
+    SurfacePoint sp;
+    sp.ng = ng;
+    sp.ns = ns;
+    sp.shape = 0;
+    return sp;
+}
+static Vec3 randomUpper(Rng& rng) {
+    Vec3 w = sampleUniformSphere(rng.uniform(), rng.uniform());
+    return w.z < 0 ? Vec3(w.x, w.y, -w.z) : w;
+}
+
+TEST_CASE("reciprocity: f(wo,wi) = f(wi,wo) for diffuse, glossy and mirror") {
+    Material diffuse, glossy, mirror;
+    diffuse.albedo = Vec3(0.7f);
+    glossy.type = Material::Glossy;
+    glossy.albedo = Vec3(0.9f);
+    glossy.exponent = 12;
+    mirror.type = Material::Mirror;
+    mirror.albedo = Vec3(0.8f);
+    SurfacePoint sp = pointWithNormals(Vec3(0, 0, 1), Vec3(0, 0, 1));
+    Rng rng = makeRng(5, 0, 0);
+    double worst = 0;
+    int nonzero = 0;
+    for (Material m : {diffuse, glossy}) {
+        Scene scene = oneQuadScene(m);
+        for (int i = 0; i < 20000; ++i) {
+            Vec3 a = randomUpper(rng), b = randomUpper(rng);
+            float fab = evalBsdfCos(scene, sp, a, b, Transport::Radiance).x / b.z;  // f without its cosine
+            float fba = evalBsdfCos(scene, sp, b, a, Transport::Radiance).x / a.z;
+            worst = std::max(worst, double(std::fabs(fab - fba)) / std::max(1e-6f, std::max(fab, fba)));
+            nonzero += fab > 0;
+        }
+    }
+    CHECK(worst < 1e-4);
+    CHECK(nonzero > 20000);
+    // The mirror: reflecting the reflection returns the first direction, with the same weight.
+    Scene scene = oneQuadScene(mirror);
+    for (int i = 0; i < 1000; ++i) {
+        Vec3 wo = randomUpper(rng);
+        BsdfSample s1, s2;
+        REQUIRE(sampleBsdf(scene, sp, wo, Transport::Radiance, rng, s1));
+        REQUIRE(sampleBsdf(scene, sp, s1.wi, Transport::Radiance, rng, s2));
+        CHECK(length(s2.wi - wo) < 1e-5f);
+        CHECK(s1.weight.x == s2.weight.x);
+    }
+}
+
+// Generalized reciprocity f(wi->wo)/eta_o^2 = f(wo->wi)/eta_i^2 has two checkable faces here:
+// the radiance weight of a refraction is (eta_o/eta_i)^2 times the importance weight, and the
+// hemispherical Fresnel reflectance inside is 1 - (1 - outside)/eta^2.
+TEST_CASE("refraction: radiance scales by (eta_o/eta_i)^2, importance does not; Fresnel inside/outside") {
+    Material glass;
+    glass.type = Material::Glass;
+    glass.ior = 1.5f;
+    Scene scene = oneQuadScene(glass);
+    SurfacePoint sp = pointWithNormals(Vec3(0, 0, 1), Vec3(0, 0, 1));
+    Rng rng = makeRng(6, 0, 0);
+    int refracted = 0;
+    for (int i = 0; i < 4000; ++i) {
+        Vec3 wo = randomUpper(rng);
+        if (i % 2) wo.z = -wo.z;  // from inside the glass too
+        float etaO = wo.z > 0 ? 1.0f : 1.5f, etaI = wo.z > 0 ? 1.5f : 1.0f;
+        Rng r1 = rng, r2 = rng;    // the same random numbers: the same lobe is chosen
+        BsdfSample rad, imp;
+        bool ok1 = sampleBsdf(scene, sp, wo, Transport::Radiance, r1, rad);
+        bool ok2 = sampleBsdf(scene, sp, wo, Transport::Importance, r2, imp);
+        rng = r1;
+        REQUIRE(ok1 == ok2);
+        if (!ok1 || rad.wi.z * wo.z > 0) continue;  // reflection: no eta factor
+        ++refracted;
+        CHECK(rad.weight.x == doctest::Approx(imp.weight.x * sqr(etaO / etaI)).epsilon(1e-5));
+        CHECK(imp.weight.x == doctest::Approx(1.0f).epsilon(1e-5));
+    }
+    CHECK(refracted > 1000);
+    double outside = 0, inside = 0;
+    const int N = 200000;
+    for (int i = 0; i < N; ++i) {  // cosine-weighted hemispherical average of F
+        float cosT = std::sqrt(rng.uniform());
+        outside += fresnelDielectric(cosT, 1 / 1.5f);
+        inside += fresnelDielectric(cosT, 1.5f);
+    }
+    outside /= N;
+    inside /= N;
+    CHECK(outside == doctest::Approx(0.0918).epsilon(0.01));
+    CHECK(inside == doctest::Approx(0.5964).epsilon(0.01));
+    CHECK(inside == doctest::Approx(1 - (1 - outside) / (1.5 * 1.5)).epsilon(0.01));
+}
+
+TEST_CASE("a camera inside a glass sphere in a uniform room sees eta^2 Le = 2.25; symmetric refraction sees 1") {
+    Scene scene = sceneAt("tests/glass-camera.scene", 8, 8);
+    CHECK(imageMean(render(scene, quietOptions(Method::PT, 256)).image) == doctest::Approx(2.25).epsilon(0.01));
+    scene.symmetricRefraction = true;
+    CHECK(imageMean(render(scene, quietOptions(Method::PT, 256)).image) == doctest::Approx(1.0).epsilon(0.01));
+}
+
+// Directional albedo of the BSDF light paths use, by uniform sampling of wi over the sphere.
+static double adjointAlbedo(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Rng& rng) {
+    double sum = 0;
+    const int N = 400000;
+    for (int i = 0; i < N; ++i)
+        sum += evalBsdfCos(scene, sp, wo, sampleUniformSphere(rng.uniform(), rng.uniform()), Transport::Importance).x;
+    return sum * 4 * kPi / N;
+}
+
+TEST_CASE("shading normals: the adjoint BSDF's albedo exceeds 1 at grazing angles (the energy generator)") {
+    Material diffuse;
+    diffuse.albedo = Vec3(0.8f);
+    Scene scene = oneQuadScene(diffuse);
+    Rng rng = makeRng(8, 0, 0);
+    float tilt = 0.5f;  // radians
+    SurfacePoint tilted = pointWithNormals(Vec3(0, 0, 1), Vec3(std::sin(tilt), 0, std::cos(tilt)));
+    SurfacePoint plain = pointWithNormals(Vec3(0, 0, 1), Vec3(0, 0, 1));
+    Vec3 grazing = normalize(Vec3(1, 0, 0.05f));  // nearly in the geometric plane, well above ns
+    double a = adjointAlbedo(scene, tilted, grazing, rng);
+    CHECK(a > 1.5);   // "can be arbitrarily large": |wo.ns|/|wo.ng| = 9.6 here
+    for (float theta : {0.0f, 0.7f, 1.3f, 1.55f}) {
+        Vec3 wo(std::sin(theta), 0, std::cos(theta));
+        CHECK(adjointAlbedo(scene, plain, wo, rng) <= 0.8 * 1.01);
+    }
+    scene.adjointCorrection = false;  // the uncorrected BSDF conserves energy but breaks reciprocity
+    CHECK(adjointAlbedo(scene, tilted, grazing, rng) < 0.81);
+}
+
+TEST_CASE("lt equals nee on cornell, region by region") {
+    Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
+    RegionEstimate nee = renderRegions(scene, quietOptions(Method::NEE, 1024, 21), 4);
+    RegionEstimate lt = renderRegions(scene, quietOptions(Method::LT, 1024, 22), 4);
+    CHECK(maxZ(nee, lt) < 4.5);
+    RegionEstimate darker = lt;
+    for (double& m : darker.mean) m *= 0.97;
+    CHECK(maxZ(nee, darker) > 4.5);  // the comparison would see a 3% error
+}
+
+// The pool: compare the floor, the part of the image both methods can render.
+static RegionEstimate poolFloor(Scene scene, Method m, int spp, uint64_t seed, bool symmetric) {
+    scene.symmetricRefraction = symmetric;
+    RegionEstimate all = renderRegions(scene, quietOptions(m, spp, seed), 4);
+    RegionEstimate floor;  // regions 12..15: the bottom row of a 4x4 grid
+    for (int r = 12; r < 16; ++r) {
+        floor.mean.push_back(all.mean[r]);
+        floor.stdError.push_back(all.stdError[r]);
+    }
+    return floor;
+}
+
+TEST_CASE("refraction scene: pt and lt agree under water; with --symmetric-refraction both are off by ~eta^2") {
+    Scene scene = sceneAt("scenes/refraction.scene", 32, 24);
+    RegionEstimate pt = poolFloor(scene, Method::PT, 512, 31, false), lt = poolFloor(scene, Method::LT, 2048, 32, false);
+    CHECK(maxZ(pt, lt) < 4.5);
+    RegionEstimate ptSym = poolFloor(scene, Method::PT, 512, 33, true), ltSym = poolFloor(scene, Method::LT, 2048, 34, true);
+    CHECK(maxZ(pt, ptSym) > 6);
+    CHECK(maxZ(lt, ltSym) > 6);
+    double eta2 = 1.33 * 1.33;
+    for (size_t r = 0; r < 4; ++r) {
+        CHECK(pt.mean[r] / ptSym.mean[r] == doctest::Approx(eta2).epsilon(0.1));  // eye tracing too dark
+        CHECK(ltSym.mean[r] / lt.mean[r] == doctest::Approx(eta2).epsilon(0.1));  // particles too bright
+    }
+}
+
+TEST_CASE("shading normals: lt agrees with nee with the adjoint correction, not without") {
+    Scene scene = sceneAt("scenes/shading-normals.scene", 32, 32);
+    RegionEstimate nee = renderRegions(scene, quietOptions(Method::NEE, 512, 41), 1);
+    RegionEstimate lt = renderRegions(scene, quietOptions(Method::LT, 1024, 42), 1);
+    CHECK(maxZ(nee, lt) < 4.5);
+    scene.adjointCorrection = false;
+    RegionEstimate uncorrected = renderRegions(scene, quietOptions(Method::LT, 1024, 43), 1);
+    CHECK(maxZ(nee, uncorrected) > 6);
+}
+
+TEST_CASE("lt renders the point-lit box, and its image is the same with 1 and 2 threads") {
+    Scene scene = sceneAt("scenes/cornell-point.scene", 24, 24);
+    RenderOptions a = quietOptions(Method::LT, 4), b = a;
+    a.threads = 1;
+    b.threads = 2;
+    RenderResult ra = render(scene, a), rb = render(scene, b);
+    CHECK(std::memcmp(ra.image.pixels.data(), rb.image.pixels.data(), ra.image.pixels.size() * sizeof(Vec3)) == 0);
+    CHECK(imageMean(ra.image) > 0.05);
+}
+
+TEST_CASE("ir: unclamped converges to nee; clamped loses energy, and more passes do not win it back") {
+    Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
+    RegionEstimate nee = renderRegions(scene, quietOptions(Method::NEE, 512, 51), 2);
+    RenderOptions o = quietOptions(Method::IR, 1024, 52);
+    RegionEstimate ir = renderRegions(scene, o, 2);
+    CHECK(maxZ(nee, ir) < 4.5);
+    o.clamp = 1e-5f;  // G in mm^-2: clamps VPLs closer than about 30 cm
+    RenderResult clamped;
+    RegionEstimate irc = renderRegions(scene, o, 2, &clamped);
+    double bias1024 = (nee.mean.back() - irc.mean.back()) / nee.mean.back();
+    CHECK(bias1024 > 0.015);  // of the whole image, whose visible lamp the clamp does not touch
+    CHECK((nee.mean.back() - irc.mean.back()) / std::hypot(nee.stdError.back(), irc.stdError.back()) > 5);
+    CHECK(clamped.clampRemoved > 0.05);
+    o.spp = 128;
+    o.seed = 53;
+    RegionEstimate irc128 = renderRegions(scene, o, 2);
+    double bias128 = (nee.mean.back() - irc128.mean.back()) / nee.mean.back();
+    CHECK(bias128 == doctest::Approx(bias1024).epsilon(0.35));  // 8x the passes, the same bias
+}
