@@ -807,6 +807,16 @@ inline float pixelImportance(const Camera& cam, Vec3 dir) {
     return float(cam.width) * cam.height / (cam.imageArea * sqr(sqr(cosT)));
 }
 
+// The solid-angle density of the camera's direction sample, normalized per sensor: 1/(A cos^3).
+// BDPT's MIS compares it with light-path densities; with one light path per camera sample the
+// per-pixel factor W*H appears on both sides and cancels (pitfall 1 of light tracing).
+inline float pdfCameraDirection(const Camera& cam, Vec3 dir) {
+    float fx, fy;
+    if (!projectToFilm(cam, cam.eye + dir, fx, fy)) return 0;
+    float cosT = dot(dir, cam.forward);
+    return 1 / (cam.imageArea * cosT * cosT * cosT);
+}
+
 // == 7. Scene file =============================================================================
 // One directive per line, '#' starts a comment; the README documents each one with an example.
 //   camera     ex ey ez  lx ly lz  ux uy uz  fov  width height
@@ -1036,10 +1046,11 @@ inline Scene loadScene(const std::string& path) {
 // Every method is one function of the same shape over the shared pieces above, so that a diff of
 // two methods shows how they differ. Paths are counted in bounces (scattering vertices): a path
 // of k segments has k-1 bounces, and --maxdepth D keeps paths with at most D bounces.
-enum class Method { PT, NEE, LT, IR };
+enum class Method { PT, NEE, LT, IR, BDPT };
+enum class Heuristic;
 
 struct RenderOptions {
-    Method method = Method::NEE;
+    Method method = Method::BDPT;
     bool mis = false;          // nee: combine light and BSDF sampling (power heuristic)
     int spp = 16;              // passes of one sample per pixel
     double seconds = 0;        // > 0: render passes until this much time has passed
@@ -1051,6 +1062,8 @@ struct RenderOptions {
     bool quiet = false;
     int vplPaths = 16;         // ir: light paths traced per pass, each leaving VPLs
     float clamp = 0;           // ir: > 0 bounds the geometry term G at this value
+    Heuristic heuristic{};     // bdpt: how strategies are weighted (balance)
+    int strategyMaxLength = 0; // bdpt: > 0 records per-strategy images up to this path length
     std::function<void(int pass, const std::vector<Vec3>& passImage)> onPass;  // after each pass
 };
 
@@ -1060,19 +1073,26 @@ struct Splat {                 // a light-path contribution that lands on some p
 };
 
 // What one image row's samples leave besides their pixels' values; rows are merged in order.
+struct StrategySplat {          // bdpt --strategies: a contribution to image `image`
+    int pixel;
+    Vec3 value;
+    int image;                 // 2 (s,t) index + (0 unweighted, 1 MIS-weighted)
+};
+
 struct RowOutput {
     std::vector<Splat> splats;
+    std::vector<StrategySplat> strategySplats;
     long long nonFinite = 0;
     double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: what the clamp removed
 };
 
 // Russian roulette ("Path tracing with Russian roulette"): continue with probability q and divide
 // the throughput by q, so E[beta 1(u<q)/q] = beta: the estimator's mean is unchanged, only paths
-// that would contribute little are cut. q follows the throughput, capped below 1 so that even
-// bright paths end eventually.
-inline bool russianRoulette(Vec3& beta, int bounces, const RenderOptions& opt, Rng& rng) {
+// that would contribute little are cut. q follows the throughput relative to the path's start
+// (a light path starts at Phi/p, a camera path at 1), capped below 1 so that every path ends.
+inline bool russianRoulette(Vec3& beta, float startThroughput, int bounces, const RenderOptions& opt, Rng& rng) {
     if (bounces < opt.rrStart) return true;
-    float q = std::min(0.95f, maxComponent(beta));
+    float q = std::min(0.95f, maxComponent(beta) / startThroughput);
     if (!(rng.uniform() < q)) return false;
     beta = beta / q;
     return true;
@@ -1097,7 +1117,7 @@ inline Vec3 radiancePT(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
         BsdfSample bs;
         if (!sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
         beta *= bs.weight;
-        if (!russianRoulette(beta, bounces, opt, rng)) break;
+        if (!russianRoulette(beta, 1, bounces, opt, rng)) break;
         ray = spawnRay(sp, bs.wi);
     }
     return L;
@@ -1151,7 +1171,7 @@ inline Vec3 radianceNEE(const Scene& scene, const RenderOptions& opt, Ray ray, R
         afterDelta = bs.delta;
         pdfPrevBsdf = bs.pdf;
         beta *= bs.weight;
-        if (!russianRoulette(beta, bounces, opt, rng)) break;
+        if (!russianRoulette(beta, 1, bounces, opt, rng)) break;
         ray = spawnRay(sp, bs.wi);
     }
     return L;
@@ -1201,6 +1221,7 @@ inline void traceLightPath(const Scene& scene, const RenderOptions& opt, Rng& rn
     EmissionSample es = sampleEmission(scene, rng);
     splatLightVertex(scene, es.point, splats);
     Vec3 beta = es.weight;
+    float start = maxComponent(beta);
     Ray ray{es.point.deltaPosition ? es.point.p : offsetPoint(es.point.p, es.point.n, es.dir), es.dir, kInf};
     for (int bounces = 1; bounces <= opt.maxDepth && !isBlack(beta); ++bounces) {
         Hit hit = intersect(scene, ray);
@@ -1215,7 +1236,7 @@ inline void traceLightPath(const Scene& scene, const RenderOptions& opt, Rng& rn
         BsdfSample bs;
         if (!sampleBsdf(scene, sp, wo, Transport::Importance, rng, bs)) break;
         beta *= bs.weight;
-        if (!russianRoulette(beta, bounces, opt, rng)) break;
+        if (!russianRoulette(beta, start, bounces, opt, rng)) break;
         ray = spawnRay(sp, bs.wi);
     }
 }
@@ -1247,6 +1268,7 @@ inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, 
         v.light.emission = v.light.emission / float(opt.vplPaths);
         vpls.push_back(v);
         Vec3 beta = es.weight / float(opt.vplPaths);
+        float start = maxComponent(beta);
         Ray ray{es.point.deltaPosition ? es.point.p : offsetPoint(es.point.p, es.point.n, es.dir), es.dir, kInf};
         for (int bounces = 1; bounces < opt.maxDepth; ++bounces) {
             Hit hit = intersect(scene, ray);
@@ -1260,7 +1282,7 @@ inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, 
             BsdfSample bs;
             if (!sampleBsdf(scene, y.sp, y.wo, Transport::Importance, rng, bs)) break;
             beta *= bs.weight;
-            if (!russianRoulette(beta, bounces, opt, rng)) break;
+            if (!russianRoulette(beta, start, bounces, opt, rng)) break;
             ray = spawnRay(y.sp, bs.wi);
         }
     }
@@ -1321,6 +1343,254 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
     return L;
 }
 
+// -- (f) bdpt: "bidirectional path tracing" (Lafortune & Willems 1993; Veach & Guibas 1995).
+// One camera subpath z_0..z_{t-1} (z_0 the pinhole) and one light subpath y_0..y_{s-1} (y_0 on a
+// light) per sample; every pair is connected, which makes the path x_0..x_k = y_0..y_{s-1}
+// z_{t-1}..z_0 of k = s+t-1 segments with the strategy the slides call p_{k,s} ("m vertices
+// from the light"): s = 0 the camera path hits an emitter, s = 1 next event, t = 1 light
+// tracing, the rest "connect paths deterministically (every pair of two hit points)". Each
+// strategy alone is unbiased for the paths it can make; MIS combines them: C = sum w_ij C_ij.
+//
+// The weights are computed pbrt-style: every vertex stores pdfFwd, the area density with which
+// its own subpath sampled it, and pdfRev, the density with which the other side would have. For
+// the path made by strategy s the density of strategy i differs by a chain of such ratios:
+//     p_{i+1}/p_i = pdfFwd(x_i) / pdfRev(x_i),    walking away from the connection,
+// so r_i = p_i/p_s costs one multiplication per vertex, and a heuristic maps the r_i to w_s:
+//     balance w_s = 1/(1 + sum r_i)   power w_s = 1/(1 + sum r_i^2)   (Veach ch. 9)
+//     max     w_s = 1 if no r_i > 1   (the slides' "choose p_X(pi) maximum"; ties share)
+//     uniform w_s = 1/(1 + #{r_i > 0})   (every strategy able to make the path, equally)
+// We chose the ratio walk over SmallVCM's recursive quantities: each factor is a density one can
+// point at on the slide, and one walk serves all four heuristics.
+// Delta events (mirror, glass, point light) get density 0, read as 1 in the ratios (the same delta
+// appears in every strategy's density), and a strategy that would have to connect at a delta
+// vertex or hit a point light is skipped: its density is 0 (pitfall 4).
+// Russian roulette ends subpaths; the weights leave its probabilities out: they still sum to 1
+// for every path, so the sum stays unbiased (SmallVCM folds them in, which is nearer optimal).
+enum class Heuristic { Balance, Power, Max, Uniform };
+
+struct PathVertex {
+    enum Type { Camera, Light, Surface } type = Surface;
+    SurfacePoint sp;        // p and ng for every type; sp.shape < 0 for the pinhole and point lights
+    Vec3 wo;                // surface: unit vector toward the previous vertex of its own subpath
+    float prevDist2 = 0;    // squared distance to that vertex
+    Vec3 beta;              // subpath throughput up to this vertex (light: Le/p_A or I/P(light))
+    float pdfFwd = 0, pdfRev = 0;  // area densities, see above
+    bool delta = false;          // a delta BSDF was sampled here
+    bool deltaPosition = false;  // the pinhole, a point light
+    int light = -1;              // the light y_0 was sampled on
+};
+
+// The cosine a density picks up at a vertex hit from direction w: |cos| on surfaces and area
+// lights, 1 at the pinhole and at point lights (no surface).
+inline float cosAt(const PathVertex& v, Vec3 w) {
+    return v.type == PathVertex::Surface || (v.type == PathVertex::Light && !v.deltaPosition) ? absDot(v.sp.ng, w) : 1;
+}
+
+// The emission direction density at a light vertex (or a surface that emits): cos/pi, front only.
+inline float pdfEmissionDirection(const PathVertex& light, Vec3 w) {
+    if (light.deltaPosition) return 1 / (4 * kPi);
+    return std::max(0.0f, dot(light.sp.ng, w)) / kPi;
+}
+
+// The solid-angle density with which `cur`, reached from direction wo, samples direction w.
+inline float pdfDirection(const Scene& scene, const PathVertex& cur, Vec3 wo, Vec3 w) {
+    if (cur.type == PathVertex::Camera) return pdfCameraDirection(scene.camera, w);
+    if (cur.type == PathVertex::Light) return pdfEmissionDirection(cur, w);
+    return pdfBsdf(scene, cur.sp, wo, w);
+}
+
+// The same as an area density at the vertex `next`, a distance^2 away along w:
+// p_A = p_omega |cos_next| / d^2.
+inline float pdfNext(const Scene& scene, const PathVertex& cur, Vec3 wo, Vec3 w, const PathVertex& next, float dist2) {
+    return pdfDirection(scene, cur, wo, w) * cosAt(next, w) / dist2;
+}
+
+// What a vertex multiplies into a connection toward w, its cosine included (section 4).
+inline Vec3 scatterTowards(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode) {
+    if (v.type == PathVertex::Light) return Vec3(v.deltaPosition ? 1 : std::max(0.0f, dot(v.sp.ng, w)));
+    return evalBsdfCos(scene, v.sp, v.wo, w, mode);
+}
+
+// Extends a subpath by BSDF sampling. Each new vertex x_i gets pdfFwd, and x_{i-2} its pdfRev,
+// both evaluated on the vertices' positions (not on the sampled direction, which leaves from an
+// offset origin), so that every strategy's density of one path is computed on the same geometry.
+inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Vec3 beta, int maxSurfaceVertices,
+                       Transport mode, Rng& rng, std::vector<PathVertex>& path) {
+    const float start = maxComponent(beta);  // Russian roulette follows the throughput relative to it
+    for (int bounces = 0; bounces < maxSurfaceVertices; ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) return;
+        PathVertex v;
+        v.sp = surfaceAt(scene, ray, hit);
+        v.beta = beta;
+        size_t i = path.size();
+        const PathVertex& prev = path[i - 1];
+        Vec3 d = prev.sp.p - v.sp.p;
+        v.prevDist2 = dot(d, d);
+        if (!(v.prevDist2 > 0)) return;
+        v.wo = d / std::sqrt(v.prevDist2);
+        v.pdfFwd = prev.delta ? 0 : pdfNext(scene, prev, prev.wo, -v.wo, v, v.prevDist2);
+        if (i >= 2) path[i - 2].pdfRev = prev.delta ? 0 : pdfNext(scene, prev, -v.wo, prev.wo, path[i - 2], prev.prevDist2);
+        path.push_back(v);
+        if (bounces + 1 == maxSurfaceVertices) return;
+        BsdfSample bs;
+        if (!sampleBsdf(scene, v.sp, v.wo, mode, rng, bs)) return;
+        path.back().delta = bs.delta;
+        beta *= bs.weight;
+        if (!russianRoulette(beta, start, bounces + 1, opt, rng)) return;
+        ray = spawnRay(v.sp, bs.wi);
+    }
+}
+
+inline void cameraSubpath(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, Rng& rng,
+                          std::vector<PathVertex>& path) {
+    path.clear();
+    PathVertex z0;
+    z0.type = PathVertex::Camera;
+    z0.sp.p = scene.camera.eye;
+    z0.beta = Vec3(1);  // W_j cos / p = 1 for a pixel sample
+    z0.pdfFwd = 1;
+    z0.deltaPosition = true;  // never hit (no t = 0 strategy), but connected to: not a delta BSDF
+    path.push_back(z0);
+    Ray ray = cameraRay(scene.camera, filmX, filmY);
+    randomWalk(scene, opt, ray, Vec3(1), opt.maxDepth + 1, Transport::Radiance, rng, path);
+}
+
+inline void lightSubpath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<PathVertex>& path) {
+    path.clear();
+    EmissionSample es = sampleEmission(scene, rng);
+    PathVertex y0;
+    y0.type = PathVertex::Light;
+    y0.sp.p = es.point.p;
+    y0.sp.ng = es.point.n;
+    y0.sp.shape = scene.lights[es.point.light].shape;  // -1 for a point light
+    y0.light = es.point.light;
+    y0.beta = es.point.emission / es.point.pdfArea;
+    y0.pdfFwd = es.point.pdfArea;
+    y0.deltaPosition = es.point.deltaPosition;
+    path.push_back(y0);
+    if (isBlack(es.weight)) return;
+    Ray ray{es.point.deltaPosition ? es.point.p : offsetPoint(es.point.p, es.point.n, es.dir), es.dir, kInf};
+    randomWalk(scene, opt, ray, es.weight, opt.maxDepth, Transport::Importance, rng, path);
+}
+
+// w_{s,t} for the path that strategy (s,t) made from light[0..s-1] and camera[0..t-1]. The
+// connection changes the reverse densities of the (up to) four vertices next to it: those are
+// computed here and override the stored ones during the walk.
+// The light seen directly (k = 1) is left to s = 0, as in pbrt: (1,1) gets weight 0, so a point
+// light stays invisible to the camera in bdpt as in pt and nee (lt shows it as one bright pixel).
+inline float misWeight(const Scene& scene, const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
+                       int t, Heuristic heuristic) {
+    if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
+    const PathVertex *qs = s > 0 ? &light[s - 1] : nullptr, *pt = &camera[t - 1];
+    const PathVertex *qsMinus = s > 1 ? &light[s - 2] : nullptr, *ptMinus = t > 1 ? &camera[t - 2] : nullptr;
+    float ptRev, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
+    if (s > 0) {
+        Vec3 d = pt->sp.p - qs->sp.p;  // the connection, from the light side to the camera side
+        float dist2 = dot(d, d);
+        Vec3 w = d / std::sqrt(dist2);
+        ptRev = pdfNext(scene, *qs, qs->wo, w, *pt, dist2);
+        qsRev = pdfNext(scene, *pt, pt->wo, -w, *qs, dist2);
+        if (qsMinus) qsMinusRev = pdfNext(scene, *qs, w, qs->wo, *qsMinus, qs->prevDist2);
+        if (ptMinus) ptMinusRev = pdfNext(scene, *pt, -w, pt->wo, *ptMinus, pt->prevDist2);
+    } else {  // pt lies on an emitter: how a light path would have started there
+        ptRev = pdfLightPoint(scene, pt->sp.shape);
+        if (ptMinus) ptMinusRev = pdfEmissionDirection(*pt, pt->wo) * cosAt(*ptMinus, pt->wo) / pt->prevDist2;
+    }
+    auto cameraRev = [&](int i) { return i == t - 1 ? ptRev : i == t - 2 ? ptMinusRev : camera[i].pdfRev; };
+    auto lightRev = [&](int i) { return i == s - 1 ? qsRev : i == s - 2 ? qsMinusRev : light[i].pdfRev; };
+    // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
+    auto cameraDelta = [&](int i) { return i != t - 1 && camera[i].delta; };
+    auto lightDelta = [&](int i) { return i != s - 1 && light[i].delta; };
+    auto remap0 = [](float f) { return f != 0 ? f : 1.0f; };
+    float sum = 0;
+    int larger = 0, equal = 0, able = 0;
+    auto add = [&](float r) {  // r = p_i / p_s of one other strategy i
+        sum += heuristic == Heuristic::Power ? r * r : r;
+        larger += r > 1;
+        equal += r == 1;
+        able += r > 0;
+    };
+    float r = 1;
+    for (int i = t - 1; i > 0; --i) {  // more light vertices: strategies (s+1, t-1), ...
+        r *= remap0(cameraRev(i)) / remap0(camera[i].pdfFwd);
+        if (!cameraDelta(i) && !cameraDelta(i - 1)) add(r);
+    }
+    r = 1;
+    for (int i = s - 1; i >= 0; --i) {  // more camera vertices: strategies (s-1, t+1), ...
+        r *= remap0(lightRev(i)) / remap0(light[i].pdfFwd);
+        bool deltaBefore = i > 0 ? lightDelta(i - 1) : light[0].deltaPosition;
+        if (!lightDelta(i) && !deltaBefore) add(r);
+    }
+    switch (heuristic) {
+        case Heuristic::Balance:
+        case Heuristic::Power: return 1 / (1 + sum);
+        case Heuristic::Max: return larger ? 0 : 1.0f / (1 + equal);
+        case Heuristic::Uniform: return 1.0f / (1 + able);
+    }
+    return 0;
+}
+
+// The unweighted contribution of strategy (s,t); for t = 1 also the pixel it lands on.
+// light[0] serves s = 1 as well: y_0 is a point sampled on a light by power and area, exactly
+// next event's light sample, so s = 1 is next-event estimation.
+inline Vec3 connectStrategy(const Scene& scene, const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
+                            int t, int& pixel) {
+    const PathVertex& pt = camera[t - 1];
+    if (s == 0) {  // the camera subpath's last vertex is on an emitter
+        if (pt.type != PathVertex::Surface) return Vec3(0);
+        return pt.beta * emittedRadiance(scene, pt.sp, pt.wo);
+    }
+    const PathVertex& qs = light[s - 1];
+    if (qs.type == PathVertex::Surface && isSpecular(scene.materials[scene.shapes[qs.sp.shape].material])) return Vec3(0);
+    if (t == 1) {  // light tracing: qs to the pinhole
+        CameraConnection c = connectToCamera(scene, qs.sp.p, qs.deltaPosition ? Vec3(0) : qs.sp.ng);
+        pixel = c.pixel;
+        if (c.pixel < 0) return Vec3(0);
+        return qs.beta * scatterTowards(scene, qs, c.toCamera, Transport::Importance) * c.importance;
+    }
+    if (isSpecular(scene.materials[scene.shapes[pt.sp.shape].material])) return Vec3(0);
+    Vec3 d = pt.sp.p - qs.sp.p;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0)) return Vec3(0);
+    Vec3 w = d / std::sqrt(dist2);  // from the light side to the camera side
+    Vec3 c = qs.beta * scatterTowards(scene, qs, w, Transport::Importance) * scatterTowards(scene, pt, -w, Transport::Radiance) *
+             pt.beta / dist2;
+    if (isBlack(c) || occluded(scene, shadowRay(qs.sp.p, qs.deltaPosition ? Vec3(0) : qs.sp.ng, pt.sp.p, pt.sp.ng))) return Vec3(0);
+    return c;
+}
+
+// Per-strategy images (--strategies): strategy (s,t) with path length k = s+t-1 <= maxLength.
+inline int strategyIndex(int s, int t) {  // rows by k, s = 0..k within a row
+    int k = s + t - 1;
+    return k * (k + 1) / 2 - 1 + s;
+}
+
+inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, int y, Rng& rng, RowOutput& out) {
+    thread_local std::vector<PathVertex> camera, light;
+    cameraSubpath(scene, opt, x + rng.uniform(), y + rng.uniform(), rng, camera);
+    lightSubpath(scene, opt, rng, light);
+    Vec3 L(0);
+    int here = y * scene.camera.width + x;
+    for (int t = 1; t <= int(camera.size()); ++t)
+        for (int s = 0; s <= int(light.size()); ++s) {
+            int bounces = s + t - 2;
+            if (bounces < 0 || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
+            int pixel = here;
+            Vec3 c = connectStrategy(scene, light, s, camera, t, pixel);
+            if (isBlack(c)) continue;
+            float w = misWeight(scene, light, s, camera, t, opt.heuristic);
+            if (t == 1) out.splats.push_back({pixel, c * w});
+            else L += c * w;
+            if (opt.strategyMaxLength > 0 && s + t - 1 <= opt.strategyMaxLength) {
+                int k = strategyIndex(s, t);
+                out.strategySplats.push_back({pixel, c, 2 * k});
+                out.strategySplats.push_back({pixel, c * w, 2 * k + 1});
+            }
+        }
+    return L;
+}
+
 // What every method shares for one pass, computed before the pixels (ir's VPLs).
 struct PassData {
     std::vector<Vpl> vpls;
@@ -1339,12 +1609,14 @@ inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, const Pass
         traceLightPath(scene, opt, rng, out.splats);
         return Vec3(0);
     }
+    if (opt.method == Method::BDPT) return radianceBDPT(scene, opt, x, y, rng, out);
     float fx = x + rng.uniform(), fy = y + rng.uniform();
     Ray ray = cameraRay(scene.camera, fx, fy);
     switch (opt.method) {
         case Method::PT: return radiancePT(scene, opt, ray, rng);
         case Method::NEE: return radianceNEE(scene, opt, ray, rng);
         case Method::IR: return radianceIR(scene, opt, ray, rng, pass.vpls, out);
+        case Method::BDPT: return Vec3(0);  // handled above
         default: return Vec3(0);
     }
 }
@@ -1377,6 +1649,7 @@ struct RenderResult {
     double seconds = 0;
     std::vector<double> passMeans;  // each pass's image mean: independent samples of the mean
     double clampRemoved = 0;        // ir --clamp: fraction of the gathered energy the clamp removed
+    std::vector<Image> strategyImages;  // bdpt --strategies: [2 strategyIndex(s,t) + weighted]
     bool interrupted = false;
 };
 
@@ -1408,6 +1681,8 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
     std::vector<Vec3> pass(size_t(W) * H);
     std::vector<RowOutput> rows(H);
     double energyUnclamped = 0, energyClamped = 0;
+    int L = opt.method == Method::BDPT ? opt.strategyMaxLength : 0;
+    std::vector<std::vector<double>> strategySum(L * (L + 3), std::vector<double>(3 * size_t(W) * H, 0.0));
     RenderResult result;
     ProgressBar bar;
     bar.enabled = !opt.quiet && isatty(2);
@@ -1422,6 +1697,7 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
             for (int y; (y = nextRow.fetch_add(1)) < H;) {
                 RowOutput& row = rows[y];
                 row.splats.clear();
+                row.strategySplats.clear();
                 row.nonFinite = 0;
                 row.energyUnclamped = row.energyClamped = 0;
                 for (int x = 0; x < W; ++x) {
@@ -1449,6 +1725,9 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 if (isFinite(s.value)) pass[s.pixel] += s.value;
                 else ++result.nonFinite;
             }
+            for (const StrategySplat& s : rows[y].strategySplats)
+                if (isFinite(s.value))
+                    for (int c = 0; c < 3; ++c) strategySum[s.image][3 * size_t(s.pixel) + c] += s.value[c];
         }
         for (size_t i = 0; i < pass.size(); ++i) {
             for (int c = 0; c < 3; ++c) {
@@ -1466,6 +1745,12 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
     bar.show(1, result.passes, 0);
     result.image = result.variance = Image(W, H);
     const double n = result.passes;
+    for (const std::vector<double>& sum : strategySum) {
+        Image img(W, H);
+        for (size_t i = 0; i < img.pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) img.pixels[i][c] = float(sum[3 * i + c] / n);
+        result.strategyImages.push_back(img);
+    }
     for (size_t i = 0; i < result.image.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) {
             double mean = sum[3 * i + c] / n;
@@ -1517,14 +1802,46 @@ inline unsigned char toSRGB8(float linear) {
     return (unsigned char)(std::min(1.0f, std::max(0.0f, v)) * 255.0f + 0.5f);
 }
 
-inline bool writePNG(const Image& img, const std::string& path, float exposure) {
+inline std::vector<unsigned char> toSRGBBytes(const Image& img, float exposure) {
     std::vector<unsigned char> bytes(img.pixels.size() * 3);
     float scale = std::exp2(exposure);
     for (size_t i = 0; i < img.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) bytes[3 * i + c] = toSRGB8(img.pixels[i][c] * scale);
+    return bytes;
+}
+
+inline bool writePNGBytes(const std::vector<unsigned char>& bytes, int width, int height, const std::string& path) {
     std::string tmp = tempName(path);
-    bool ok = stbi_write_png(tmp.c_str(), img.width, img.height, 3, bytes.data(), img.width * 3) != 0;
+    bool ok = stbi_write_png(tmp.c_str(), width, height, 3, bytes.data(), width * 3) != 0;
     return commitFile(tmp, path, ok);
+}
+
+inline bool writePNG(const Image& img, const std::string& path, float exposure) {
+    return writePNGBytes(toSRGBBytes(img, exposure), img.width, img.height, path);
+}
+
+// Labels for the strategy pyramid: a 3x5 pixel font of the few characters it needs.
+inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, int x0, int y0, const std::string& text, int scale) {
+    static const std::map<char, const char*> glyphs = {
+        {'0', "111101101101111"}, {'1', "010110010010111"}, {'2', "111001111100111"}, {'3', "111001111001111"},
+        {'4', "101101111001001"}, {'5', "111100111001111"}, {'6', "111100111101111"}, {'7', "111001001001001"},
+        {'8', "111101111101111"}, {'9', "111101111001111"}, {'s', "011100010001110"}, {'t', "010111010010011"},
+        {'=', "000111000111000"}, {' ', "000000000000000"}, {'k', "100101110101101"}};
+    for (size_t i = 0; i < text.size(); ++i) {
+        auto g = glyphs.find(text[i]);
+        if (g == glyphs.end()) continue;
+        for (int gy = 0; gy < 5; ++gy)
+            for (int gx = 0; gx < 3; ++gx) {
+                if (g->second[gy * 3 + gx] != '1') continue;
+                for (int dy = 0; dy <= scale; ++dy)  // white with a one-pixel dark shadow
+                    for (int dx = 0; dx <= scale; ++dx) {
+                        int x = x0 + int(i) * 4 * scale + gx * scale + dx, y = y0 + gy * scale + dy;
+                        if (x < 0 || y < 0 || x >= width || y >= height) continue;
+                        unsigned char v = (dx < scale && dy < scale) ? 255 : 0;
+                        for (int c = 0; c < 3; ++c) rgb[3 * (size_t(y) * width + x) + c] = v;
+                    }
+            }
+    }
 }
 
 inline std::string replaceExtension(const std::string& path, const std::string& ext) {
@@ -1713,6 +2030,36 @@ inline void runRayBenchmark(std::ostream& out, uint64_t seed, int n, size_t m, i
     }
 }
 
+// The slides' "Contributions of different paths" as a pyramid: row k = path length (segments),
+// column s = vertices from the light (t = k+1-s from the camera), one image per strategy p_{k,s}.
+inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
+    if (r.strategyImages.empty()) return true;
+    const int W = r.image.width, H = r.image.height, gap = 4;
+    const int canvasW = (maxLength + 1) * (W + gap) + gap, canvasH = maxLength * (H + gap) + gap;
+    bool ok = true;
+    for (int weighted = 0; weighted < 2; ++weighted) {
+        std::vector<unsigned char> canvas(size_t(canvasW) * canvasH * 3, 40);
+        for (int k = 1; k <= maxLength; ++k)
+            for (int s = 0; s <= k; ++s) {
+                int t = k + 1 - s;
+                const Image& img = r.strategyImages[2 * strategyIndex(s, t) + weighted];
+                std::string name = dir + "/s" + std::to_string(s) + "_t" + std::to_string(t) + (weighted ? "_weighted" : "_unweighted");
+                ok = ok && writePNG(img, name + ".png", exposure) && writePFM(img, name + ".pfm");
+                std::vector<unsigned char> tile = toSRGBBytes(img, exposure);
+                int x0 = gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap), y0 = gap + (k - 1) * (H + gap);
+                for (int y = 0; y < H; ++y)
+                    std::copy(tile.begin() + 3 * size_t(y) * W, tile.begin() + 3 * size_t(y + 1) * W,
+                              canvas.begin() + 3 * (size_t(y0 + y) * canvasW + x0));
+                drawLabel(canvas, canvasW, canvasH, x0 + 3, y0 + 3, "s" + std::to_string(s) + " t" + std::to_string(t),
+                          std::max(1, H / 64));
+            }
+        std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
+        ok = ok && writePNGBytes(canvas, canvasW, canvasH, pyramid);
+        if (ok) out << "wrote " << pyramid << "\n";
+    }
+    return ok;
+}
+
 // == 10. Command line ===========================================================================
 const char* kUsage = R"(usage: bdpt SCENE [options]
 Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)
@@ -1720,12 +2067,18 @@ and, beside it, a PFM with the linear values.
 
 Method
   --method M        pt   (a) eye tracing: emission counted only when a path hits a light
-                    nee  (b) path tracing with next-event estimation (default)
+                    nee  (b) path tracing with next-event estimation
                     lt   (c) light tracing: light paths splatted onto the film
                     ir   (d) instant radiosity: camera paths gather virtual point lights
+                    bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)
   --mis             nee: weight light and BSDF sampling with the power heuristic
   --vpls N          ir: light paths traced per pass, each leaving VPLs (default 16)
   --clamp C         ir: bound the geometry term G by C (panel (e)); prints the energy removed
+  --heuristic H     bdpt: MIS weights balance (default), power, max (the slides' maximum
+                    heuristic) or uniform (1 / number of strategies able to make the path)
+  --strategies DIR  bdpt: also write one image per strategy (s,t) up to --strategy-length,
+                    unweighted and MIS-weighted, and two pyramid montages, into DIR
+  --strategy-length K  longest path (segments) with per-strategy images (default 5)
   --maxdepth D      at most D bounces (scattering vertices) per path (default 32)
 Deliberate mistakes (slides: "Non-symmetric scattering")
   --symmetric-refraction   reuse one BTDF for both transports: eye paths scale refracted
@@ -1755,7 +2108,8 @@ struct CommandLine {
     RenderOptions opt;
     int width = 0, height = 0;
     bool help = false, benchRays = false, symmetricRefraction = false, noAdjointCorrection = false;
-    int benchN = 100000, benchReps = 5;
+    int benchN = 100000, benchReps = 5, strategyLength = 5;
+    std::string strategiesDir;
     size_t benchM = 4194304;
 };
 
@@ -1790,9 +2144,20 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             else if (m == "nee") cl.opt.method = Method::NEE;
             else if (m == "lt") cl.opt.method = Method::LT;
             else if (m == "ir") cl.opt.method = Method::IR;
-            else fail("unknown method '" + printable(m) + "' (pt, nee, lt, ir)");
+            else if (m == "bdpt") cl.opt.method = Method::BDPT;
+            else fail("unknown method '" + printable(m) + "' (pt, nee, lt, ir, bdpt)");
+        } else if (a == "--heuristic") {
+            std::string h = value(i);
+            if (h == "balance") cl.opt.heuristic = Heuristic::Balance;
+            else if (h == "power") cl.opt.heuristic = Heuristic::Power;
+            else if (h == "max") cl.opt.heuristic = Heuristic::Max;
+            else if (h == "uniform") cl.opt.heuristic = Heuristic::Uniform;
+            else fail("unknown heuristic '" + printable(h) + "' (balance, power, max, uniform)");
+        } else if (a == "--strategies") {
+            cl.strategiesDir = value(i);
         } else if (a == "--mis") cl.opt.mis = true;
         else if (a == "--vpls") cl.opt.vplPaths = int(integer(i, 1, 1e6));
+        else if (a == "--strategy-length") cl.strategyLength = int(integer(i, 1, 12));
         else if (a == "--clamp") cl.opt.clamp = float(number(i, 1e-30, 1e30));
         else if (a == "--symmetric-refraction") cl.symmetricRefraction = true;
         else if (a == "--no-adjoint-correction") cl.noAdjointCorrection = true;
@@ -1822,6 +2187,10 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
     }
     if (!cl.help && !cl.benchRays && cl.scenePath.empty()) fail("no scene file given");
     if (!cl.help && replaceExtension(cl.out, ".pfm") == cl.out) fail("--out must not end in .pfm (the PFM goes beside the PNG)");
+    if (!cl.strategiesDir.empty()) {
+        if (cl.opt.method != Method::BDPT) fail("--strategies needs --method bdpt");
+        cl.opt.strategyMaxLength = cl.strategyLength;
+    }
     return cl;
 }
 
@@ -1857,6 +2226,10 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     if (!cl.opt.quiet)
         out << cl.scenePath << ": " << r.passes << " samples per pixel in " << r.seconds << " s, mean " << imageMean(r.image)
             << ", " << r.nonFinite << " non-finite samples dropped; wrote " << cl.out << " and " << pfm << "\n";
+    if (!writeStrategyImages(r, cl.opt.strategyMaxLength, cl.strategiesDir, cl.opt.exposure, out)) {
+        err << "bdpt: cannot write the strategy images into " << cl.strategiesDir << "/\n";
+        return 1;
+    }
     if (!cl.opt.quiet && cl.opt.method == Method::IR && cl.opt.clamp > 0)
         out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved << "% of the energy gathered from VPLs\n";
     return 0;

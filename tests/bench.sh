@@ -17,4 +17,20 @@ awk '{ k=$2" "$3" "$4; for (i=5;i<=NF;i++){split($i,a,"="); v[$1,k,a[1]]=a[2]} k
                     v["bdpt",k,"cpu_mrays"]/v["embree",k,"cpu_mrays"], v["bdpt",k,"hits"], v["embree",k,"hits"];
            else if (v["embree",k,"build_ms"] != "" && v["bdpt",k,"build_ms"] != "")
              printf "%-40s build %.1f ms vs %.1f ms\n", k, v["bdpt",k,"build_ms"], v["embree",k,"build_ms"] }' "$out/median.txt" | sort
+echo "== cost per sample, bdpt / nee on scenes/cornell.scene (32 spp, all threads, interleaved $runs times)"
+for i in $(seq "$runs"); do
+  for m in nee bdpt; do
+    ./bdpt scenes/cornell.scene --method $m --spp 32 --out "$out/cost.png" | sed -n "s/.* in \([0-9.e+-]*\) s.*/$m \1/p"
+  done
+done > "$out/cost.txt"
+python3 - "$out/cost.txt" <<'PY'
+import statistics, sys
+t = {}
+for line in open(sys.argv[1]):
+    m, s = line.split()
+    t.setdefault(m, []).append(float(s))
+print("nee  seconds:", t["nee"])
+print("bdpt seconds:", t["bdpt"])
+print("median ratio bdpt/nee: %.2fx" % (statistics.median(t["bdpt"]) / statistics.median(t["nee"])))
+PY
 rm -rf "$out"
