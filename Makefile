@@ -16,12 +16,45 @@ bdpt: bdpt.cpp
 run: bdpt
 	./bdpt scenes/cornell.scene --spp 64 --out cornell.png
 
-build/%: tests/%.cpp bdpt.cpp
+build/%: tests/%.cpp bdpt.cpp tests/helpers.h
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 test: bdpt $(TESTS)
 	@set -e; for t in $(TESTS); do echo "== $$t"; ./$$t; done
+
+# Speed against accuracy (gnuplot-nox): references once, then charts and the failure table,
+# and the slides' six-panel figure. See tests/charts.sh for the budgets.
+refs: bdpt
+	tests/charts.sh refs
+
+charts: bdpt
+	tests/charts.sh charts
+
+figures: bdpt
+	tests/charts.sh figures
+
+# The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it too).
+SANITIZE := -O1 -g -std=c++17 -Wall -Wextra -pthread -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+SAN_TESTS := $(patsubst tests/%.cpp,build/san/%,$(wildcard tests/test_*.cpp))
+
+build/san/%: tests/%.cpp bdpt.cpp tests/helpers.h
+	@mkdir -p build/san
+	$(CXX) $(SANITIZE) -I. -o $@ $< $(LDLIBS)
+
+test-sanitize: bdpt $(SAN_TESTS)
+	@set -e; for t in $(SAN_TESTS); do echo "== $$t"; ASAN_OPTIONS=detect_leaks=1 ./$$t; done
+
+# Fuzz the scene parser with libFuzzer (clang), from the bad-scene corpus, for FUZZ_SECONDS.
+FUZZ_SECONDS ?= 60
+build/fuzz_scene: tests/fuzz_scene.cpp bdpt.cpp
+	@mkdir -p build
+	clang++ -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -I. -o $@ $< $(LDLIBS)
+
+fuzz: build/fuzz_scene
+	@mkdir -p build/fuzz-corpus
+	cp tests/bad_scenes/*.scene scenes/*.scene build/fuzz-corpus/
+	./build/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 -print_final_stats=1 build/fuzz-corpus
 
 # BVH against Embree (installs libembree-dev for the yardstick in ../shared/perf).
 bench: bdpt
@@ -30,4 +63,4 @@ bench: bdpt
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test bench clean
+.PHONY: all run test test-sanitize fuzz bench refs charts figures clean

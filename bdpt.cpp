@@ -12,6 +12,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -857,9 +858,9 @@ struct SceneParser {
         char* end = nullptr;
         errno = 0;
         double v = std::strtod(t.c_str(), &end);
-        if (end == t.c_str() || *end != 0 || t.find_first_of("nNiI") != std::string::npos)
+        if (end == t.c_str() || *end != 0 || t.find_first_not_of("0123456789+-.eE") != std::string::npos)  // decimal only
             fail(std::string("malformed number '") + printable(t) + "' for " + what);
-        if (errno == ERANGE || !std::isfinite(float(v)) || std::fabs(v) > 1e30)
+        if (errno == ERANGE || !(std::fabs(v) <= 1e30))  // checked before the cast to float (UB if too large)
             fail(std::string("number out of range '") + printable(t) + "' for " + what);
         return float(v);
     }
@@ -870,9 +871,11 @@ struct SceneParser {
     Vec3 colour(const char* what, bool atMostOne) {
         Vec3 c = vec3(what);
         for (int i = 0; i < 3; ++i)
-            if (c[i] < 0 || (atMostOne && c[i] > 1))
-                fail(std::string(what) + " must lie in [0,1]" + (atMostOne ? "" : " or above") + ", got " +
-                     std::to_string(c[i]));
+            if (c[i] < 0 || (atMostOne && c[i] > 1)) {
+                std::ostringstream got;
+                got << c[i];
+                fail(std::string(what) + (atMostOne ? " must lie in [0,1]" : " must be >= 0") + ", got " + got.str());
+            }
         return c;
     }
     int integer(const char* what, int lo, int hi) {
@@ -1064,7 +1067,8 @@ struct RenderOptions {
     float clamp = 0;           // ir: > 0 bounds the geometry term G at this value
     Heuristic heuristic{};     // bdpt: how strategies are weighted (balance)
     int strategyMaxLength = 0; // bdpt: > 0 records per-strategy images up to this path length
-    std::function<void(int pass, const std::vector<Vec3>& passImage)> onPass;  // after each pass
+    // Called after each pass with that pass's image and the non-finite samples dropped so far.
+    std::function<void(int pass, const std::vector<Vec3>& passImage, long long nonFinite)> onPass;
 };
 
 struct Splat {                 // a light-path contribution that lands on some pixel
@@ -1673,6 +1677,18 @@ inline double secondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Ctrl-C: the first interrupt lets the pass in flight finish, then the render stops and the
+// completed passes are written as usual; a second one removes the file being written, if any,
+// and exits at once (status 130). Only async-signal-safe calls in the handler.
+inline std::atomic<int> gInterrupts{0};
+inline char gFileBeingWritten[4096] = {0};
+extern "C" inline void onInterrupt(int) {
+    if (gInterrupts.fetch_add(1) >= 1) {
+        if (gFileBeingWritten[0]) unlink(gFileBeingWritten);
+        _exit(130);
+    }
+}
+
 inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
     const Camera& cam = scene.camera;
     const int W = cam.width, H = cam.height;
@@ -1691,6 +1707,10 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
         return opt.seconds > 0 ? secondsSince(t0) / opt.seconds : passesDone / std::max(1, opt.spp);
     };
     for (int p = 0; opt.seconds > 0 ? (p == 0 || secondsSince(t0) < opt.seconds) : p < opt.spp; ++p) {
+        if (p > 0 && gInterrupts.load() > 0) {
+            result.interrupted = true;
+            break;
+        }
         PassData passData = preparePass(scene, opt, p);
         std::atomic<int> nextRow{0};
         auto worker = [&](int id) {
@@ -1737,7 +1757,7 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
             passSum += double(pass[i].x) + pass[i].y + pass[i].z;
         }
         result.passMeans.push_back(passSum / (3.0 * pass.size()));
-        if (opt.onPass) opt.onPass(p, pass);
+        if (opt.onPass) opt.onPass(p, pass, result.nonFinite);
         result.passes = p + 1;
     }
     result.seconds = secondsSince(t0);
@@ -1763,11 +1783,16 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
 
 // Files appear whole or not at all: written under a temporary name, then renamed.
 inline bool commitFile(const std::string& tmp, const std::string& path, bool ok) {
-    if (ok && std::rename(tmp.c_str(), path.c_str()) == 0) return true;
-    std::remove(tmp.c_str());
-    return false;
+    bool done = ok && std::rename(tmp.c_str(), path.c_str()) == 0;
+    if (!done) std::remove(tmp.c_str());
+    gFileBeingWritten[0] = 0;
+    return done;
 }
-inline std::string tempName(const std::string& path) { return path + ".tmp" + std::to_string(getpid()); }
+inline std::string tempName(const std::string& path) {  // and remember it for a second Ctrl-C
+    std::string tmp = path + ".tmp" + std::to_string(getpid());
+    std::snprintf(gFileBeingWritten, sizeof gFileBeingWritten, "%s", tmp.c_str());
+    return tmp;
+}
 
 // PFM: linear floats, little-endian (scale -1), rows from the bottom up.
 inline bool writePFM(const Image& img, const std::string& path) {
@@ -1795,6 +1820,43 @@ inline bool readPFM(const std::string& path, Image& img) {
     }
     std::fclose(f);
     return ok;
+}
+
+// Error against a reference image (speed against accuracy). RMSE over pixels and channels;
+// relMSE = mean (x - ref)^2 / (ref^2 + 0.01), as rendering papers report it; the relative bias of
+// the image mean; and a firefly measure: the 99.9th percentile of the per-pixel absolute error
+// over its median (large where a few pixels carry huge errors).
+struct ErrorMetrics {
+    double rmse = 0, relMse = 0, mean = 0, bias = 0, firefly = 0;
+};
+
+inline ErrorMetrics compareToReference(const Image& img, const Image& ref) {
+    ErrorMetrics m;
+    std::vector<double> pixelError(img.pixels.size());
+    double refSum = 0, sum = 0;
+    for (size_t i = 0; i < img.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            double x = img.pixels[i][c], r = ref.pixels[i][c], e = x - r;
+            m.rmse += e * e;
+            m.relMse += e * e / (r * r + 0.01);
+            sum += x;
+            refSum += r;
+        }
+        pixelError[i] = std::fabs(double(average(img.pixels[i])) - average(ref.pixels[i]));
+    }
+    double n = 3.0 * img.pixels.size();
+    m.rmse = std::sqrt(m.rmse / n);
+    m.relMse /= n;
+    m.mean = sum / n;
+    m.bias = refSum > 0 ? (sum - refSum) / refSum : 0;
+    auto quantile = [&](double q) {
+        size_t k = std::min(pixelError.size() - 1, size_t(q * (pixelError.size() - 1) + 0.5));
+        std::nth_element(pixelError.begin(), pixelError.begin() + k, pixelError.end());
+        return pixelError[k];
+    };
+    double median = quantile(0.5), p999 = quantile(0.999);
+    m.firefly = p999 / std::max(median, 1e-12);
+    return m;
 }
 
 inline unsigned char toSRGB8(float linear) {
@@ -2061,6 +2123,74 @@ inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std:
 }
 
 // == 10. Command line ===========================================================================
+inline const char* methodName(Method m) {
+    switch (m) {
+        case Method::PT: return "pt";
+        case Method::NEE: return "nee";
+        case Method::LT: return "lt";
+        case Method::IR: return "ir";
+        case Method::BDPT: return "bdpt";
+    }
+    return "?";
+}
+
+inline std::string optionsLabel(const RenderOptions& o) {  // what distinguishes a run in the charts
+    std::ostringstream s;
+    if (o.method == Method::NEE && o.mis) s << "--mis ";
+    if (o.method == Method::IR) s << "--vpls " << o.vplPaths << (o.clamp > 0 ? " --clamp " : "") << (o.clamp > 0 ? std::to_string(o.clamp) : "") << " ";
+    if (o.method == Method::BDPT) {
+        const char* h[] = {"balance", "power", "max", "uniform"};
+        s << "--heuristic " << h[int(o.heuristic)] << " ";
+    }
+    if (o.maxDepth != 32) s << "--maxdepth " << o.maxDepth;
+    std::string r = s.str();
+    while (!r.empty() && r.back() == ' ') r.pop_back();
+    return r;
+}
+
+// The failure table from --log files: for each run, the slope of log(rmse) against log(seconds)
+// (least squares over the passes after the first tenth of the time; -0.5 for an unbiased method
+// that converges, about 0 for one that is biased or lacks the technique), and the last pass's
+// relative bias of the mean, firefly measure and NaN count.
+inline int printFailureTable(const std::vector<std::string>& logs, std::ostream& out, std::ostream& err) {
+    out << "| scene | method | slope | bias | fireflies | NaN |\n|---|---|---|---|---|---|\n";
+    for (const std::string& path : logs) {
+        std::ifstream in(path);
+        if (!in) { err << path << ":0: cannot open log\n"; return 2; }
+        std::string line, scene, method, options;
+        std::vector<double> logT, logE;
+        std::vector<std::string> last;
+        double lastSeconds = 0;
+        std::vector<std::pair<double, double>> rows;
+        std::getline(in, line);  // header
+        while (std::getline(in, line)) {
+            std::vector<std::string> f;
+            std::stringstream ss(line);
+            for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+            if (f.size() < 12 || f[6].empty()) continue;
+            scene = f[0]; method = f[1]; options = f[2];
+            rows.push_back({std::atof(f[5].c_str()), std::atof(f[6].c_str())});
+            lastSeconds = rows.back().first;
+            last = f;
+        }
+        if (rows.empty()) { err << path << ":0: no rows with an error (was --ref given?)\n"; return 2; }
+        double sx = 0, sy = 0, sxx = 0, sxy = 0;
+        int n = 0;
+        for (auto [t, e] : rows)
+            if (t >= 0.1 * lastSeconds && t > 0 && e > 0) {
+                double x = std::log(t), y = std::log(e);
+                sx += x; sy += y; sxx += x * x; sxy += x * y; ++n;
+            }
+        double slope = n > 1 && n * sxx - sx * sx > 0 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0;
+        char row[512];
+        std::snprintf(row, sizeof row, "| %s | %s%s%s | %.2f | %+.1f%% | %.0f | %s |\n", scene.c_str(), method.c_str(),
+                      options.empty() ? "" : " ", options.c_str(), slope, 100 * std::atof(last[9].c_str()),
+                      std::atof(last[10].c_str()), last[11].c_str());
+        out << row;
+    }
+    return 0;
+}
+
 const char* kUsage = R"(usage: bdpt SCENE [options]
 Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)
 and, beside it, a PFM with the linear values.
@@ -2095,12 +2225,23 @@ Output
   --exposure STOPS  scale the PNG by 2^STOPS (the PFM stays linear)
   --quiet           no progress bar and no summary line
   --help            this text
+Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;
+a second Ctrl-C exits at once, leaving no partial file.
+Speed against accuracy
+  --ref FILE.pfm    reference image (same resolution): after every pass compute RMSE, relMSE,
+                    the relative bias of the mean and the firefly measure against it
+  --log FILE.csv    one row per pass: scene, method, options, pass, spp, seconds, rmse, relmse,
+                    mean, bias, firefly, nan_count (error columns empty without --ref)
+  --compare A.pfm B.pfm  print rmse, relmse and bias of A against B (e.g. two seeds of a reference)
+  --failure-table LOG.csv...  print the README's failure table (markdown) from such logs:
+                    slope of log(rmse) against log(seconds), bias, fireflies, NaN count
 Benchmark (no scene file)
   --bench-rays      trace the rays of ../shared/perf/README.md through the BVH and print Mrays/s
                     in embree_bench's line format; with --bench-n N (shapes of each kind in the
                     stress scene, default 100000), --bench-m M (rays per set, default 4194304),
                     --bench-reps R (default 5), --seed S (default 1)
-Exit status: 0 done, 1 an output file could not be written, 2 bad scene file or option.
+Exit status: 0 done, 1 an output file could not be written, 2 bad scene file or option,
+130 interrupted.
 )";
 
 struct CommandLine {
@@ -2109,7 +2250,9 @@ struct CommandLine {
     int width = 0, height = 0;
     bool help = false, benchRays = false, symmetricRefraction = false, noAdjointCorrection = false;
     int benchN = 100000, benchReps = 5, strategyLength = 5;
-    std::string strategiesDir;
+    std::string strategiesDir, refPath, logPath;
+    std::vector<std::string> failureLogs;
+    std::string compareA, compareB;
     size_t benchM = 4194304;
 };
 
@@ -2169,6 +2312,16 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (a == "--out") cl.out = value(i);
         else if (a == "--exposure") cl.opt.exposure = float(number(i, -50, 50));
         else if (a == "--quiet") cl.opt.quiet = true;
+        else if (a == "--ref") cl.refPath = value(i);
+        else if (a == "--log") cl.logPath = value(i);
+        else if (a == "--compare") {
+            cl.compareA = value(i);
+            cl.compareB = value(i);
+        } else if (a == "--failure-table") {
+            cl.failureLogs.assign(args.begin() + i + 1, args.end());
+            if (cl.failureLogs.empty()) fail("--failure-table needs log files");
+            break;
+        }
         else if (a == "--bench-rays") cl.benchRays = true;
         else if (a == "--bench-n") cl.benchN = int(integer(i, 1, 1e7));
         else if (a == "--bench-m") cl.benchM = size_t(integer(i, 64, 1e9));
@@ -2185,7 +2338,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (cl.scenePath.empty()) cl.scenePath = a;
         else fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
     }
-    if (!cl.help && !cl.benchRays && cl.scenePath.empty()) fail("no scene file given");
+    if (!cl.help && !cl.benchRays && cl.failureLogs.empty() && cl.compareA.empty() && cl.scenePath.empty()) fail("no scene file given");
     if (!cl.help && replaceExtension(cl.out, ".pfm") == cl.out) fail("--out must not end in .pfm (the PFM goes beside the PNG)");
     if (!cl.strategiesDir.empty()) {
         if (cl.opt.method != Method::BDPT) fail("--strategies needs --method bdpt");
@@ -2208,6 +2361,17 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         cl = parseCommandLine(args);
         if (cl.help) { out << kUsage; return 0; }
         if (cl.benchRays) { runRayBenchmark(out, cl.opt.seed, cl.benchN, cl.benchM, cl.benchReps); return 0; }
+        if (!cl.failureLogs.empty()) return printFailureTable(cl.failureLogs, out, err);
+        if (!cl.compareA.empty()) {
+            Image a, b;
+            if (!readPFM(cl.compareA, a) || !readPFM(cl.compareB, b) || a.width != b.width || a.height != b.height) {
+                err << "bdpt: cannot compare " << cl.compareA << " and " << cl.compareB << " (two PFMs of one size)\n";
+                return 2;
+            }
+            ErrorMetrics m = compareToReference(a, b);
+            out << "rmse " << m.rmse << " relmse " << m.relMse << " bias " << m.bias << " mean " << m.mean << "\n";
+            return 0;
+        }
         scene = loadScene(cl.scenePath);
     } catch (const InputError& e) {
         err << e.what() << "\n";
@@ -2216,7 +2380,51 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
     scene.symmetricRefraction = cl.symmetricRefraction;
     scene.adjointCorrection = !cl.noAdjointCorrection;
+    Image ref;
+    if (!cl.refPath.empty()) {
+        if (!readPFM(cl.refPath, ref)) { err << cl.refPath << ":0: cannot read reference (a PFM written by bdpt)\n"; return 2; }
+        if (ref.width != scene.camera.width || ref.height != scene.camera.height) {
+            err << cl.refPath << ":0: reference is " << ref.width << "x" << ref.height << ", the image " << scene.camera.width << "x"
+                << scene.camera.height << " (use --res)\n";
+            return 2;
+        }
+    }
+    // Per-pass metrics: the running mean against the reference, with the time spent measuring
+    // taken out of the clock.
+    std::ostringstream log;
+    log << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count\n";
+    std::vector<double> running(3 * size_t(scene.camera.width) * scene.camera.height, 0.0);
+    auto start = std::chrono::steady_clock::now();
+    double measuring = 0;
+    std::string sceneName = cl.scenePath.substr(cl.scenePath.find_last_of('/') + 1);
+    sceneName = sceneName.substr(0, sceneName.find_last_of('.'));
+    if (!cl.logPath.empty()) {
+        cl.opt.onPass = [&](int p, const std::vector<Vec3>& pass, long long nonFinite) {
+            double seconds = secondsSince(start) - measuring;
+            auto t0 = std::chrono::steady_clock::now();
+            Image mean(scene.camera.width, scene.camera.height);
+            for (size_t i = 0; i < pass.size(); ++i)
+                for (int c = 0; c < 3; ++c) mean.pixels[i][c] = float((running[3 * i + c] += pass[i][c]) / (p + 1));
+            log << sceneName << "," << methodName(cl.opt.method) << "," << optionsLabel(cl.opt) << "," << p + 1 << "," << p + 1 << ","
+                << seconds << ",";
+            if (ref.width > 0) {
+                ErrorMetrics m = compareToReference(mean, ref);
+                log << m.rmse << "," << m.relMse << "," << m.mean << "," << m.bias << "," << m.firefly;
+            } else {
+                log << ",," << imageMean(mean) << ",,";
+            }
+            log << "," << nonFinite << "\n";
+            measuring += secondsSince(t0);
+        };
+    }
     RenderResult r = render(scene, cl.opt);
+    if (!cl.logPath.empty()) {
+        std::string tmp = tempName(cl.logPath);
+        std::ofstream f(tmp);
+        f << log.str();
+        f.close();
+        if (!commitFile(tmp, cl.logPath, bool(f))) { err << "bdpt: cannot write " << cl.logPath << "\n"; return 1; }
+    }
     std::string pfm = replaceExtension(cl.out, ".pfm");
     if (!writePNG(r.image, cl.out, cl.opt.exposure) || !writePFM(r.image, pfm)) {
         err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
@@ -2230,11 +2438,18 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         err << "bdpt: cannot write the strategy images into " << cl.strategiesDir << "/\n";
         return 1;
     }
+    if (r.interrupted) {
+        err << "bdpt: interrupted: wrote the " << r.passes << " completed samples per pixel to " << cl.out << " and " << pfm << "\n";
+        return 130;
+    }
     if (!cl.opt.quiet && cl.opt.method == Method::IR && cl.opt.clamp > 0)
         out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved << "% of the energy gathered from VPLs\n";
     return 0;
 }
 
 #ifndef BDPT_NO_MAIN
-int main(int argc, char** argv) { return runCommandLine(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr); }
+int main(int argc, char** argv) {
+    std::signal(SIGINT, onInterrupt);
+    return runCommandLine(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr);
+}
 #endif

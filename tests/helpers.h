@@ -31,7 +31,7 @@ struct RegionEstimate {
 inline RegionEstimate renderRegions(const Scene& scene, RenderOptions opt, int grid, RenderResult* out = nullptr) {
     const int W = scene.camera.width, H = scene.camera.height, R = grid * grid + 1;
     std::vector<std::vector<double>> samples(R);
-    opt.onPass = [&](int, const std::vector<Vec3>& pass) {
+    opt.onPass = [&](int, const std::vector<Vec3>& pass, long long) {
         std::vector<double> s(R, 0.0);
         std::vector<int> n(R, 0);
         for (int y = 0; y < H; ++y)

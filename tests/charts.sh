@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# Speed against accuracy. Usage:
+#   tests/charts.sh refs      references of every scene (once; kept in scenes/refs/, reused)
+#   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts
+#                             in lecture_notes/figures/, and the failure table in the README
+#   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time
+set -euo pipefail
+cd "$(dirname "$0")/.."
+RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
+REF_SECONDS=${REF_SECONDS:-90}    # per reference seed: far more than a run, so its noise is far below
+RUN_SECONDS=${RUN_SECONDS:-4}     # per method and scene (90 runs: 6 minutes)
+SCENES=${SCENES:-"cornell cornell-point cornell-glass indirect furnace refraction shading-normals sds sds-point"}
+FIG=lecture_notes/figures
+LOGS=build/charts
+mkdir -p "$FIG" "$LOGS/refs" scenes/refs
+
+clampFor() {  # G is in the scene's units: a clamp that removes a visible share in each
+  case $1 in cornell*|indirect|shading-normals) echo 1e-5 ;; furnace) echo 0.1 ;; refraction) echo 0.05 ;; *) echo 0.2 ;; esac
+}
+# The ten runs of every scene: label|options
+methods() {
+  printf '%s\n' "pt|--method pt" "nee|--method nee" "nee-mis|--method nee --mis" "lt|--method lt" "ir|--method ir" \
+    "ir-clamp|--method ir --clamp $(clampFor "$1")" "bdpt-balance|--method bdpt --heuristic balance" \
+    "bdpt-power|--method bdpt --heuristic power" "bdpt-max|--method bdpt --heuristic max" \
+    "bdpt-uniform|--method bdpt --heuristic uniform"
+}
+
+refs() {
+  echo "scene,method,seconds_per_seed,spp_seed1,spp_seed2,rmse_between_seeds,relmse_between_seeds" > scenes/refs/refs.csv.tmp
+  for s in $SCENES; do
+    # bdpt everywhere but the shading-normal scene, whose adjoint BSDF gives bdpt's light paths heavy tails
+    m=bdpt; [ "$s" = shading-normals ] && m="nee --mis"
+    for seed in 1 2; do
+      ./bdpt scenes/$s.scene --method $m --res "$RES" --time "$REF_SECONDS" --seed $seed --quiet \
+        --out scenes/refs/$s-seed$seed.png --log "$LOGS/refs/$s-$seed.csv"
+    done
+    mv scenes/refs/$s-seed1.pfm scenes/refs/$s.pfm
+    mv scenes/refs/$s-seed1.png scenes/refs/$s.png
+    diff=$(./bdpt --compare scenes/refs/$s-seed2.pfm scenes/refs/$s.pfm)
+    rm -f scenes/refs/$s-seed2.pfm scenes/refs/$s-seed2.png
+    spp1=$(tail -1 "$LOGS/refs/$s-1.csv" | cut -d, -f5); spp2=$(tail -1 "$LOGS/refs/$s-2.csv" | cut -d, -f5)
+    echo "$s,$m,$REF_SECONDS,$spp1,$spp2,$(echo "$diff" | awk '{print $2","$4}')" >> scenes/refs/refs.csv.tmp
+    echo "reference $s: $m, $spp1 spp in $REF_SECONDS s; seed 1 vs seed 2: $diff"
+  done
+  mv scenes/refs/refs.csv.tmp scenes/refs/refs.csv
+}
+
+charts() {
+  for s in $SCENES; do
+    [ -f scenes/refs/$s.pfm ] || { echo "no reference scenes/refs/$s.pfm: run make refs" >&2; exit 1; }
+    plot=""
+    local colors=(9400d3 009e73 56b4e9 e69f00 f0e442 0072b2 d55e00 000000 cc79a7 999999) c=0
+    while IFS='|' read -r label opts; do
+      # shellcheck disable=SC2086
+      ./bdpt scenes/$s.scene $opts --res "$RES" --time "$RUN_SECONDS" --quiet --ref scenes/refs/$s.pfm \
+        --log "$LOGS/$s-$label.csv" --out "$LOGS/$s-$label.png"
+      plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:7 with lines lw 2 lc rgb '#${colors[c]}' title '$label'"
+      c=$((c + 1))
+    done < <(methods "$s")
+    refnoise=$(awk -F, -v s="$s" '$1 == s { print $6 / sqrt(2) }' scenes/refs/refs.csv)
+    gnuplot <<GP
+set terminal pngcairo size 800,560 font "sans,11"
+set output "$FIG/error-vs-time-$s.png"
+set datafile separator ","
+set logscale xy
+set key outside right
+set grid
+set title "$s ($RES): RMSE against the reference, same time for every method"
+set xlabel "seconds (2 threads)"
+set ylabel "RMSE"
+plot $plot, ${refnoise:-0} with lines dt 2 lc rgb "black" title "reference noise"
+GP
+    echo "chart $FIG/error-vs-time-$s.png"
+  done
+  local logs=()
+  for s in $SCENES; do while IFS='|' read -r label opts; do logs+=("$LOGS/$s-$label.csv"); done < <(methods "$s"); done
+  ./bdpt --failure-table "${logs[@]}" > "$FIG/failure-table.md"
+  # Splice the table into the README between its markers.
+  awk -v table="$FIG/failure-table.md" '
+    /<!-- failure-table:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
+    /<!-- failure-table:end -->/ { skip = 0 }
+    !skip' README.md > README.md.tmp && mv README.md.tmp README.md
+  echo "failure table: $FIG/failure-table.md (and README.md)"
+}
+
+figures() {
+  local scene=cornell-glass panels="pt|(a) eye tracing (pt)|--method pt
+nee|(b) eye tracing + next event (nee)|--method nee
+lt|(c) next event: light tracing (lt)|--method lt
+ir|(d) instant radiosity (ir)|--method ir
+irc|(e) instant radiosity, clamped|--method ir --clamp 1e-5
+bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
+  mkdir -p "$LOGS/fig"
+  # 40 paths per pixel; then every method for the time bdpt took.
+  while IFS='|' read -r name title opts; do
+    ./bdpt scenes/$scene.scene $opts --spp 40 --quiet --out "$LOGS/fig/$name-40.png"
+  done <<< "$panels"
+  t=$(./bdpt scenes/$scene.scene --method bdpt --spp 40 --out "$LOGS/fig/t.png" | sed -n 's/.* in \([0-9.e+-]*\) s.*/\1/p')
+  while IFS='|' read -r name title opts; do
+    ./bdpt scenes/$scene.scene $opts --time "$t" --quiet --out "$LOGS/fig/$name-time.png"
+  done <<< "$panels"
+  for kind in 40 time; do
+    caption="40 paths per pixel"; [ $kind = time ] && caption="equal time: $t s each (what bdpt needs for 40 paths per pixel)"
+    {
+      echo 'set terminal pngcairo size 1200,880 font "sans,12"'
+      echo "set output '$FIG/six-panels-$kind.png'"
+      echo "set multiplot layout 2,3 title '$scene, $caption'"
+      echo 'unset border; unset tics; unset key; set size ratio -1; set lmargin 0; set rmargin 0; set tmargin 2; set bmargin 0'
+      while IFS='|' read -r name title opts; do
+        echo "set title '$title'"
+        echo "plot '$LOGS/fig/$name-$kind.png' binary filetype=png with rgbimage"
+      done <<< "$panels"
+      echo 'unset multiplot'
+    } | gnuplot
+    echo "figure $FIG/six-panels-$kind.png"
+  done
+}
+
+"${1:-charts}"

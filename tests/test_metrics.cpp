@@ -1,0 +1,112 @@
+// Speed against accuracy: the metrics on images with known answers, and where each method fails,
+// as numbers. (Issue: speed against accuracy.)
+#include "helpers.h"
+
+static Image constantImage(int w, int h, float v) {
+    Image img(w, h);
+    for (Vec3& p : img.pixels) p = Vec3(v);
+    return img;
+}
+
+TEST_CASE("metrics on synthetic images with known answers") {
+    Image ref = constantImage(10, 10, 1), img = constantImage(10, 10, 1.1f);
+    img.at(3, 4) = Vec3(11);  // one firefly: error 10 where the others have 0.1
+    ErrorMetrics m = compareToReference(img, ref);
+    CHECK(m.rmse == doctest::Approx(std::sqrt((99 * 0.01 + 100) / 100)).epsilon(1e-4));
+    CHECK(m.relMse == doctest::Approx((99 * 0.01 + 100) / 1.01 / 100).epsilon(1e-4));
+    CHECK(m.bias == doctest::Approx(0.199).epsilon(1e-4));
+    CHECK(m.mean == doctest::Approx(1.199).epsilon(1e-4));
+    CHECK(m.firefly == doctest::Approx(100).epsilon(1e-3));  // 99.9th percentile 10 over median 0.1
+    ErrorMetrics same = compareToReference(ref, ref);
+    CHECK(same.rmse == 0);
+    CHECK(same.bias == 0);
+    Image dark = constantImage(10, 10, 0.5f);
+    CHECK(compareToReference(dark, ref).bias == doctest::Approx(-0.5));
+    CHECK(compareToReference(dark, ref).relMse == doctest::Approx(0.25 / 1.01).epsilon(1e-4));
+}
+
+TEST_CASE("the failure table: slope of log(rmse) against log(time), last bias, fireflies and NaNs") {
+    std::ofstream a("build/tmp_converges.csv"), b("build/tmp_biased.csv");
+    a << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count\n";
+    b << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count\n";
+    for (int p = 1; p <= 100; ++p) {
+        a << "x,nee,,"<< p << "," << p << "," << 0.01 * p << "," << 0.3 / std::sqrt(p) << ",0,1,0.001,7,0\n";
+        b << "x,ir,--clamp 1," << p << "," << p << "," << 0.01 * p << ",0.05,0,1,-0.042,3,2\n";
+    }
+    a.close();
+    b.close();
+    std::ostringstream out, err;
+    CHECK(printFailureTable({"build/tmp_converges.csv", "build/tmp_biased.csv"}, out, err) == 0);
+    CHECK(out.str().find("| x | nee | -0.50 | +0.1% | 7 | 0 |") != std::string::npos);
+    CHECK(out.str().find("| x | ir --clamp 1 | 0.00 | -4.2% | 3 | 2 |") != std::string::npos);
+    CHECK(printFailureTable({"build/no-such.csv"}, out, err) == 2);
+}
+
+// The error of a render against a reference, after each of several pass counts.
+static std::vector<ErrorMetrics> errorsAt(const Scene& scene, RenderOptions o, const Image& ref, const std::vector<int>& passes) {
+    std::vector<ErrorMetrics> out;
+    std::vector<double> sum(3 * ref.pixels.size(), 0.0);
+    o.spp = passes.back();
+    o.onPass = [&](int p, const std::vector<Vec3>& pass, long long) {
+        for (size_t i = 0; i < pass.size(); ++i)
+            for (int c = 0; c < 3; ++c) sum[3 * i + c] += pass[i][c];
+        if (std::find(passes.begin(), passes.end(), p + 1) == passes.end()) return;
+        Image mean(ref.width, ref.height);
+        for (size_t i = 0; i < mean.pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) mean.pixels[i][c] = float(sum[3 * i + c] / (p + 1));
+        out.push_back(compareToReference(mean, ref));
+    };
+    render(scene, o);
+    return out;
+}
+
+TEST_CASE("pt on cornell-point is black, and more samples do not help") {
+    Scene scene = sceneAt("scenes/cornell-point.scene", 16, 16);
+    Image ref = render(scene, quietOptions(Method::NEE, 256, 3)).image;
+    std::vector<ErrorMetrics> e = errorsAt(scene, quietOptions(Method::PT, 1, 4), ref, {4, 64});
+    CHECK(e[0].mean == 0);
+    CHECK(e[1].rmse == e[0].rmse);
+    CHECK(e[1].bias == doctest::Approx(-1.0));
+}
+
+TEST_CASE("indirect: nee's error falls like N^-1/2 but stays above bdpt's at equal samples") {
+    Scene scene = sceneAt("scenes/indirect.scene", 16, 16);
+    Image ref = render(scene, quietOptions(Method::BDPT, 4096, 5)).image;
+    std::vector<int> passes = {16, 64, 256};
+    std::vector<ErrorMetrics> nee = errorsAt(scene, quietOptions(Method::NEE, 1, 6), ref, passes);
+    std::vector<ErrorMetrics> bdpt = errorsAt(scene, quietOptions(Method::BDPT, 1, 7), ref, passes);
+    double slope = std::log(nee[2].rmse / nee[0].rmse) / std::log(16.0);
+    CHECK(slope == doctest::Approx(-0.5).epsilon(0.3));  // -0.35 .. -0.65
+    for (size_t i = 0; i < passes.size(); ++i) {
+        CAPTURE(passes[i]);
+        CHECK(nee[i].rmse > 2 * bdpt[i].rmse);
+    }
+}
+
+TEST_CASE("ir: the clamp's bias does not shrink with passes; unclamped ir has more fireflies") {
+    Scene scene = sceneAt("scenes/cornell.scene", 24, 24);
+    Image ref = render(scene, quietOptions(Method::BDPT, 1024, 8)).image;
+    RenderOptions clamped = quietOptions(Method::IR, 1, 9), unclamped = clamped;
+    clamped.clamp = 1e-5f;
+    std::vector<ErrorMetrics> c = errorsAt(scene, clamped, ref, {64, 512});
+    std::vector<ErrorMetrics> u = errorsAt(scene, unclamped, ref, {64, 512});
+    CHECK(c[0].bias < -0.015);
+    CHECK(c[1].bias == doctest::Approx(c[0].bias).epsilon(0.3));  // 8x the passes, the same bias
+    CHECK(std::fabs(u[1].bias) < std::fabs(c[1].bias) / 2);
+    CHECK(u[0].firefly > 1.5 * c[0].firefly);
+}
+
+TEST_CASE("no method produces a NaN or an infinity on any scene") {
+    for (const char* file : {"scenes/cornell.scene", "scenes/cornell-point.scene", "scenes/cornell-glass.scene",
+                             "scenes/indirect.scene", "scenes/furnace.scene", "scenes/refraction.scene",
+                             "scenes/shading-normals.scene", "scenes/sds.scene", "scenes/sds-point.scene"})
+        for (Method m : {Method::PT, Method::NEE, Method::LT, Method::IR, Method::BDPT}) {
+            CAPTURE(file);
+            CAPTURE(int(m));
+            RenderResult r = render(sceneAt(file, 16, 16), quietOptions(m, 4));
+            CHECK(r.nonFinite == 0);
+            bool finite = true;
+            for (const Vec3& p : r.image.pixels) finite = finite && isFinite(p);
+            CHECK(finite);
+        }
+}

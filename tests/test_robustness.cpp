@@ -1,0 +1,125 @@
+// Robustness: malformed scene files, Ctrl-C, numerical edge cases. (Issue: robustness.)
+#include "helpers.h"
+#include <dirent.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+
+static std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Runs the command line on a bad scene: status 2, exactly the expected message, no file.
+static void expectRejected(const std::string& scene, const std::string& expected) {
+    const std::string out = "build/tmp_rejected.png";
+    std::remove(out.c_str());
+    std::ostringstream so, se;
+    int status = runCommandLine({scene, "--out", out, "--spp", "1", "--quiet"}, so, se);
+    CAPTURE(scene);
+    CHECK(status == 2);
+    CHECK(se.str() == expected);
+    CHECK(!fileExists(out));
+    CHECK(!fileExists("build/tmp_rejected.pfm"));
+}
+
+TEST_CASE("every file in tests/bad_scenes is rejected with its exact message, status 2 and no output") {
+    DIR* dir = opendir("tests/bad_scenes");
+    REQUIRE(dir);
+    std::vector<std::string> scenes;
+    for (dirent* e; (e = readdir(dir));) {
+        std::string name = e->d_name;
+        if (name.size() > 6 && name.substr(name.size() - 6) == ".scene") scenes.push_back("tests/bad_scenes/" + name);
+    }
+    closedir(dir);
+    CHECK(scenes.size() >= 30);
+    for (const std::string& scene : scenes) {
+        std::string expected = readFile(scene.substr(0, scene.size() - 6) + ".expected");
+        REQUIRE(!expected.empty());
+        CHECK(expected.rfind(scene + ":", 0) == 0);  // it starts with file:line
+        expectRejected(scene, expected);
+    }
+}
+
+TEST_CASE("a 1 MB line is rejected like any other") {
+    std::string big = "camera 0 1 -5  0 1 0  0 1 0  40  32 32\nmaterial m diffuse 0.5 0.5 0.5\nsphere 0 0 0 1 m";
+    while (big.size() < (1 << 20)) big += " emit 1 1 1";
+    std::string path = writeTempFile("long-line.scene", big + " 7\n");
+    expectRejected(path, path + ":3: unknown option '7' (emit, bump, inside)\n");
+}
+
+// Runs ./bdpt as a child process and interrupts it; returns its exit status.
+static int interruptRun(const std::vector<std::string>& args, double firstAfter, double secondAfter) {
+    pid_t pid = fork();
+    if (pid == 0) {
+        std::vector<char*> argv;
+        std::string exe = "./bdpt";
+        argv.push_back(&exe[0]);
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        int devnull = open("/dev/null", O_WRONLY);
+        dup2(devnull, 2);
+        execv(argv[0], argv.data());
+        _exit(127);
+    }
+    usleep(useconds_t(firstAfter * 1e6));
+    kill(pid, SIGINT);
+    if (secondAfter > 0) {
+        usleep(useconds_t(secondAfter * 1e6));
+        kill(pid, SIGINT);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST_CASE("Ctrl-C finishes the pass, writes the completed passes and exits 130; a second one leaves nothing") {
+    std::remove("build/tmp_int.png");
+    std::remove("build/tmp_int.pfm");
+    int status = interruptRun({"scenes/cornell.scene", "--res", "64x64", "--spp", "1000000", "--out", "build/tmp_int.png"}, 1.0, 0);
+    CHECK(status == 130);
+    Image img;
+    REQUIRE(readPFM("build/tmp_int.pfm", img));
+    CHECK(img.width == 64);
+    CHECK(imageMean(img) == doctest::Approx(0.123).epsilon(0.1));  // a real image of the completed passes
+    CHECK(fileExists("build/tmp_int.png"));
+    // Passes of a 1024x1024 image take long: the second Ctrl-C lands inside one.
+    std::remove("build/tmp_int2.png");
+    std::remove("build/tmp_int2.pfm");
+    status = interruptRun({"scenes/cornell.scene", "--res", "1024x1024", "--spp", "1000000", "--out", "build/tmp_int2.png"}, 0.8, 0.3);
+    CHECK(status == 130);
+    CHECK(!fileExists("build/tmp_int2.png"));
+    CHECK(!fileExists("build/tmp_int2.pfm"));
+    DIR* dir = opendir("build");
+    int temps = 0;
+    for (dirent* e; (e = readdir(dir));) temps += std::string(e->d_name).find("tmp_int2.png.tmp") == 0;
+    closedir(dir);
+    CHECK(temps == 0);
+}
+
+TEST_CASE("numerical edge cases render with no NaN or infinity, for every method") {
+    for (std::string file : {"tests/edge-camera-inside.scene", "tests/edge-grazing.scene", "tests/edge-scales.scene",
+                             "tests/edge-light-touching.scene", "tests/edge-ior-one.scene", "tests/edge-tir.scene",
+                             "tests/glass-camera.scene"})
+        for (Method m : {Method::PT, Method::NEE, Method::LT, Method::IR, Method::BDPT}) {
+            CAPTURE(file);
+            CAPTURE(int(m));
+            RenderOptions o = quietOptions(m, 8);
+            o.mis = true;
+            RenderResult r = render(sceneAt(file, 16, 16), o);
+            CHECK(r.nonFinite == 0);
+            bool finite = true;
+            for (const Vec3& p : r.image.pixels) finite = finite && isFinite(p);
+            CHECK(finite);
+            if (m == Method::BDPT) CHECK(imageMean(r.image) > 0);  // something is lit in each
+        }
+}
+
+TEST_CASE("glass of index 1 is invisible: the same image as without it, within noise") {
+    Scene with = sceneAt("tests/edge-ior-one.scene", 16, 16);
+    std::string text = readFile("tests/edge-ior-one.scene");
+    Scene without = parseScene(text.substr(0, text.find("sphere 0 0.6 0")), "without");
+    setResolution(without.camera, 16, 16);
+    CHECK(maxZ(renderRegions(with, quietOptions(Method::NEE, 256, 1), 2), renderRegions(without, quietOptions(Method::NEE, 256, 2), 2)) < 4.5);
+}
