@@ -1,4 +1,5 @@
 # bdpt: make (build), make run (render the default scene), make test, make clean.
+SHELL := /bin/bash
 CXX      ?= g++
 CXXFLAGS ?= -O2 -g -std=c++17 -Wall -Wextra -pthread
 LDLIBS   ?= -lstb -pthread
@@ -20,8 +21,11 @@ build/%: tests/%.cpp bdpt.cpp tests/helpers.h
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
+# Runs every test program; the last line sums their test cases ("N passed, N failed").
 test: bdpt $(TESTS)
-	@set -e; for t in $(TESTS); do echo "== $$t"; ./$$t; done
+	@status=0; for t in $(TESTS); do echo "== $$t"; ./$$t 2>&1 | tee $$t.log; [ $${PIPESTATUS[0]} -eq 0 ] || status=1; done; \
+	cat $(addsuffix .log,$(TESTS)) | awk '/test cases:/ { p += $$6; f += $$9 } END { printf "tests: %d passed, %d failed\n", p, f }'; \
+	exit $$status
 
 # Speed against accuracy (gnuplot-nox): references once, then charts and the failure table,
 # and the slides' six-panel figure. See tests/charts.sh for the budgets.
@@ -33,6 +37,7 @@ charts: bdpt
 
 figures: bdpt
 	tests/charts.sh figures
+	tests/charts.sh notes
 
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it too).
 SANITIZE := -O1 -g -std=c++17 -Wall -Wextra -pthread -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer

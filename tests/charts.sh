@@ -4,6 +4,7 @@
 #   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts
 #                             in lecture_notes/figures/, and the failure table in the README
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time
+#   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
@@ -113,6 +114,16 @@ bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
       echo 'unset multiplot'
     } | gnuplot
     echo "figure $FIG/six-panels-$kind.png"
+  done
+}
+
+notes() {  # every command shown in the lecture notes, exactly as shown
+  grep -h '^\./bdpt ' lecture_notes/*.md | while read -r cmd; do
+    dir=$(echo "$cmd" | sed -n 's/.*--strategies \([^ ]*\).*/\1/p')
+    [ -n "$dir" ] && mkdir -p "$dir"
+    echo "$cmd"
+    # shellcheck disable=SC2086
+    $cmd --quiet
   done
 }
 
