@@ -75,3 +75,35 @@ inline std::string writeTempFile(const std::string& name, const std::string& tex
     std::ofstream(path, std::ios::binary) << text;
     return path;
 }
+
+// A scene of one 2x2 quad in the z = 0 plane with material m, to query a BSDF in isolation at
+// surfaceAtOrigin(), whose shading normal may differ from the geometric one.
+inline Scene singleQuadScene(Material m) {
+    Scene s;
+    s.materials.push_back(m);
+    Shape q;
+    q.type = Shape::Quad;
+    q.p = Vec3(-1, -1, 0);
+    q.u = Vec3(2, 0, 0);
+    q.v = Vec3(0, 2, 0);
+    q.normal = Vec3(0, 0, 1);
+    q.area = 4;
+    s.shapes.push_back(q);
+    return s;
+}
+inline SurfacePoint surfaceAtOrigin(Vec3 ns = Vec3(0, 0, 1)) {
+    SurfacePoint sp;
+    sp.ng = Vec3(0, 0, 1);
+    sp.ns = ns;
+    sp.shape = 0;
+    return sp;
+}
+
+// Renders twice, with 1 and with 2 threads: are the two images the same bit for bit?
+inline bool sameWithOneAndTwoThreads(const Scene& scene, RenderOptions o) {
+    o.threads = 1;
+    RenderResult a = render(scene, o);
+    o.threads = 2;
+    RenderResult b = render(scene, o);
+    return std::memcmp(a.image.pixels.data(), b.image.pixels.data(), a.image.pixels.size() * sizeof(Vec3)) == 0;
+}

@@ -245,12 +245,7 @@ TEST_CASE("the MIS-weighted strategy images add up to the rendered image exactly
 }
 
 TEST_CASE("bdpt: the image is the same with 1 and 2 threads, and each heuristic agrees with nee") {
-    Scene scene = sceneAt("scenes/cornell-glass.scene", 16, 16);
-    RenderOptions a = quietOptions(Method::BDPT, 4), b = a;
-    a.threads = 1;
-    b.threads = 2;
-    RenderResult ra = render(scene, a), rb = render(scene, b);
-    CHECK(std::memcmp(ra.image.pixels.data(), rb.image.pixels.data(), ra.image.pixels.size() * sizeof(Vec3)) == 0);
+    CHECK(sameWithOneAndTwoThreads(sceneAt("scenes/cornell-glass.scene", 16, 16), quietOptions(Method::BDPT, 4)));
     Scene cornell = sceneAt("scenes/cornell.scene", 24, 24);
     RegionEstimate nee = renderRegions(cornell, quietOptions(Method::NEE, 1024, 81), 2);
     for (Heuristic h : {Heuristic::Power, Heuristic::Max, Heuristic::Uniform}) {

@@ -45,30 +45,6 @@ TEST_CASE("ray-quad: inside, edges, outside, parallel, back side") {
     CHECK(t == doctest::Approx(2 / d.z));
 }
 
-// A one-shape scene around a material, to query its BSDF in isolation.
-static Scene materialScene(Material m, Vec3 ns = Vec3(0, 0, 1)) {
-    Scene s;
-    s.materials.push_back(m);
-    Shape q;
-    q.type = Shape::Quad;
-    q.p = Vec3(-1, -1, 0);
-    q.u = Vec3(2, 0, 0);
-    q.v = Vec3(0, 2, 0);
-    q.normal = Vec3(0, 0, 1);
-    q.area = 4;
-    s.shapes.push_back(q);
-    (void)ns;
-    return s;
-}
-static SurfacePoint origin(Vec3 ns = Vec3(0, 0, 1)) {
-    SurfacePoint sp;
-    sp.p = Vec3(0, 0, 0);
-    sp.ng = Vec3(0, 0, 1);
-    sp.ns = ns;
-    sp.shape = 0;
-    return sp;
-}
-
 // Directional albedo two ways: the mean sampling weight E[f cos / pdf], and (for non-delta lobes)
 // an independent uniform-sphere integral of evalBsdfCos. They must agree, and stay <= 1.
 TEST_CASE("BSDF albedo <= 1 and sampling consistent with evaluation") {
@@ -83,8 +59,8 @@ TEST_CASE("BSDF albedo <= 1 and sampling consistent with evaluation") {
     glass.ior = 1.5f;
     const int N = 200000;
     for (Material m : {diffuse, glossy, mirror, glass}) {
-        Scene scene = materialScene(m);
-        SurfacePoint sp = origin();
+        Scene scene = singleQuadScene(m);
+        SurfacePoint sp = surfaceAtOrigin();
         for (float theta : {0.0f, 0.5f, 1.0f, 1.4f}) {
             CAPTURE(m.type);
             CAPTURE(theta);
@@ -153,14 +129,9 @@ TEST_CASE("pt leaves the point-lit box black; nee does not") {
 
 TEST_CASE("the image is the same bit for bit with 1 and 2 threads") {
     Scene scene = sceneAt("scenes/cornell-glass.scene", 24, 24);
-    RenderOptions a = quietOptions(Method::NEE, 3), b = a;
-    a.threads = 1;
-    b.threads = 2;
-    RenderResult ra = render(scene, a), rb = render(scene, b);
-    CHECK(std::memcmp(ra.image.pixels.data(), rb.image.pixels.data(), ra.image.pixels.size() * sizeof(Vec3)) == 0);
-    b.seed = 2;
-    RenderResult rc = render(scene, b);
-    CHECK(std::memcmp(ra.image.pixels.data(), rc.image.pixels.data(), ra.image.pixels.size() * sizeof(Vec3)) != 0);
+    CHECK(sameWithOneAndTwoThreads(scene, quietOptions(Method::NEE, 3)));
+    RenderResult a = render(scene, quietOptions(Method::NEE, 3, 1)), b = render(scene, quietOptions(Method::NEE, 3, 2));
+    CHECK(std::memcmp(a.image.pixels.data(), b.image.pixels.data(), a.image.pixels.size() * sizeof(Vec3)) != 0);  // seeds matter
 }
 
 TEST_CASE("PFM round trip and atomic output files") {
