@@ -278,7 +278,9 @@ struct Aabb {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
-    void grow(const Aabb& b) { grow(b.lo); grow(b.hi); }
+    void grow(const Aabb& b) {
+        if (b.lo.x <= b.hi.x) grow(b.lo), grow(b.hi);  // an empty box (an empty SAH bin) adds nothing
+    }
     float halfArea() const {
         Vec3 d = hi - lo;
         return lo.x > hi.x ? 0 : d.x * d.y + d.y * d.z + d.z * d.x;
