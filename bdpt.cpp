@@ -321,88 +321,97 @@ struct Bvh {
 };
 
 struct BvhBuilder {
-    const std::vector<Shape>& shapes;
-    std::vector<Aabb> bounds;
-    std::vector<Vec3> centroid;
-    std::vector<int> order;
+    struct Ref {  // one shape during the build; partitioned in place, so every pass is sequential
+        Aabb box;
+        Vec3 centroid;
+        int shape;
+    };
+    std::vector<Ref> refs;
     Bvh& bvh;
 
     Aabb rangeBounds(int b, int e) const {
         Aabb box;
-        for (int i = b; i < e; ++i) box.grow(bounds[order[i]]);
+        for (int i = b; i < e; ++i) box.grow(refs[i].box);
         return box;
     }
-    int split(int b, int e) {  // binned SAH; returns the first index of the right half
+    // Binned SAH: one pass bins the shapes on all three axes, one partitions them; returns the
+    // first index of the right half and the two halves' boxes.
+    int split(int b, int e, Aabb& leftBox, Aabb& rightBox) {
         constexpr int kBins = 16;
         Aabb cb;
-        for (int i = b; i < e; ++i) cb.grow(centroid[order[i]]);
+        for (int i = b; i < e; ++i) cb.grow(refs[i].centroid);
+        Aabb bin[3][kBins];
+        int count[3][kBins] = {{0}};
+        float scale[3];
+        for (int a = 0; a < 3; ++a) scale[a] = cb.hi[a] > cb.lo[a] ? kBins / (cb.hi[a] - cb.lo[a]) : 0;
+        auto binOf = [&](const Ref& r, int a) { return std::min(kBins - 1, int((r.centroid[a] - cb.lo[a]) * scale[a])); };
+        for (int i = b; i < e; ++i)
+            for (int a = 0; a < 3; ++a) {
+                int k = binOf(refs[i], a);
+                bin[a][k].grow(refs[i].box);
+                ++count[a][k];
+            }
         float bestCost = kInf;
         int bestAxis = -1, bestBin = 0;
-        for (int axis = 0; axis < 3; ++axis) {
-            float lo = cb.lo[axis], extent = cb.hi[axis] - lo;
-            if (!(extent > 0)) continue;
-            Aabb bin[kBins];
-            int count[kBins] = {0};
-            for (int i = b; i < e; ++i) {
-                int k = std::min(kBins - 1, int((centroid[order[i]][axis] - lo) * (kBins / extent)));
-                bin[k].grow(bounds[order[i]]);
-                ++count[k];
-            }
+        for (int a = 0; a < 3; ++a) {
+            if (scale[a] == 0) continue;
             float rightArea[kBins];
             int rightCount[kBins];
             Aabb acc;
             int n = 0;
             for (int k = kBins - 1; k > 0; --k) {
-                acc.grow(bin[k]);
-                n += count[k];
+                acc.grow(bin[a][k]);
+                n += count[a][k];
                 rightArea[k] = acc.halfArea();
                 rightCount[k] = n;
             }
             acc = Aabb();
             n = 0;
             for (int k = 0; k < kBins - 1; ++k) {
-                acc.grow(bin[k]);
-                n += count[k];
+                acc.grow(bin[a][k]);
+                n += count[a][k];
                 float cost = acc.halfArea() * n + rightArea[k + 1] * rightCount[k + 1];
-                if (n > 0 && rightCount[k + 1] > 0 && cost < bestCost) { bestCost = cost; bestAxis = axis; bestBin = k; }
+                if (n > 0 && rightCount[k + 1] > 0 && cost < bestCost) { bestCost = cost; bestAxis = a; bestBin = k; }
             }
         }
-        int mid = (b + e) / 2;  // all centroids in one bin: split by count
-        if (bestAxis >= 0) {
-            float lo = cb.lo[bestAxis], scale = kBins / (cb.hi[bestAxis] - lo);
-            mid = int(std::partition(order.begin() + b, order.begin() + e, [&](int i) {
-                return std::min(kBins - 1, int((centroid[i][bestAxis] - lo) * scale)) <= bestBin;
-            }) - order.begin());
-            if (mid == b || mid == e) mid = (b + e) / 2;
+        if (bestAxis < 0) {  // all centroids in one point: split by count
+            int mid = (b + e) / 2;
+            leftBox = rangeBounds(b, mid);
+            rightBox = rangeBounds(mid, e);
+            return mid;
         }
-        return mid;
+        leftBox = rightBox = Aabb();
+        for (int k = 0; k < kBins; ++k) (k <= bestBin ? leftBox : rightBox).grow(bin[bestAxis][k]);
+        return int(std::partition(refs.begin() + b, refs.begin() + e, [&](const Ref& r) { return binOf(r, bestAxis) <= bestBin; }) -
+                   refs.begin());
     }
-    int build(int b, int e) {
+    int build(int b, int e, const Aabb& box) {
         int index = int(bvh.nodes.size());
         bvh.nodes.emplace_back();
         struct Range { int b, e; Aabb box; } r[4];
         int n = 1;
-        r[0] = {b, e, rangeBounds(b, e)};
+        r[0] = {b, e, box};
         while (n < 4) {  // open the largest child that is too big for a leaf
             int pick = -1;
             for (int i = 0; i < n; ++i)
                 if (r[i].e - r[i].b > kMaxLeaf && (pick < 0 || r[i].box.halfArea() > r[pick].box.halfArea())) pick = i;
             if (pick < 0) break;
-            int mid = split(r[pick].b, r[pick].e);
-            r[n++] = {mid, r[pick].e, rangeBounds(mid, r[pick].e)};
-            r[pick] = {r[pick].b, mid, rangeBounds(r[pick].b, mid)};
+            Aabb left, right;
+            int mid = split(r[pick].b, r[pick].e, left, right);
+            r[n++] = {mid, r[pick].e, right};
+            r[pick] = {r[pick].b, mid, left};
         }
         BvhNode node;
         for (int i = 0; i < 4; ++i) {
-            Aabb box = i < n ? r[i].box : Aabb();
+            Aabb childBox = i < n ? r[i].box : Aabb();
             for (int a = 0; a < 3; ++a) {
-                node.box[2 * a][i] = box.lo[a];
-                node.box[2 * a + 1][i] = box.hi[a];
+                node.box[2 * a][i] = childBox.lo[a];
+                node.box[2 * a + 1][i] = childBox.hi[a];
             }
             node.child[i] = 0;
             if (i >= n) continue;
             int count = r[i].e - r[i].b;
-            node.child[i] = count <= kMaxLeaf ? -1 - (r[i].b * 8 + count) : build(r[i].b, r[i].e);
+            node.child[i] = count <= kMaxLeaf ? -1 - (r[i].b * 8 + count) : build(r[i].b, r[i].e, r[i].box);
         }
         bvh.nodes[index] = node;
         return index;
@@ -412,19 +421,20 @@ struct BvhBuilder {
 inline Bvh buildBvh(const std::vector<Shape>& shapes) {
     Bvh bvh;
     if (shapes.empty()) return bvh;
-    BvhBuilder builder{shapes, {}, {}, {}, bvh};
-    for (const Shape& s : shapes) {
-        builder.bounds.push_back(shapeBounds(s));
-        builder.centroid.push_back((builder.bounds.back().lo + builder.bounds.back().hi) * 0.5f);
-        builder.order.push_back(int(builder.order.size()));
+    BvhBuilder builder{{}, bvh};
+    builder.refs.reserve(shapes.size());
+    for (size_t i = 0; i < shapes.size(); ++i) {
+        Aabb box = shapeBounds(shapes[i]);
+        builder.refs.push_back({box, (box.lo + box.hi) * 0.5f, int(i)});
     }
     bvh.nodes.reserve(2 * shapes.size() / kMaxLeaf + 1);
-    builder.build(0, int(shapes.size()));
-    for (int i : builder.order) {
-        const Shape& s = shapes[i];
+    builder.build(0, int(shapes.size()), builder.rangeBounds(0, int(shapes.size())));
+    bvh.prims.reserve(shapes.size());
+    for (const BvhBuilder::Ref& r : builder.refs) {
+        const Shape& s = shapes[r.shape];
         Primitive q;
         q.p = s.p;
-        q.shape = i;
+        q.shape = r.shape;
         q.sphere = s.type == Shape::Sphere;
         if (q.sphere) {
             q.u = Vec3(s.radius);
