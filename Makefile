@@ -1,5 +1,6 @@
 # bdpt: make (build), make run (render the default scene), make test, make clean.
 SHELL := /bin/bash
+MAKEFLAGS += --jobs=$(shell nproc 2>/dev/null || echo 2)  # test programs build in parallel
 CXX      ?= g++
 CXXFLAGS ?= -O2 -g -std=c++17 -Wall -Wextra -pthread
 LDLIBS   ?= -lstb -pthread

@@ -105,8 +105,8 @@ bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
     {
       echo 'set terminal pngcairo size 1200,880 font "sans,12"'
       echo "set output '$FIG/six-panels-$kind.png'"
-      echo "set multiplot layout 2,3 title '$scene, $caption'"
-      echo 'unset border; unset tics; unset key; set size ratio -1; set lmargin 0; set rmargin 0; set tmargin 2; set bmargin 0'
+      echo "set multiplot layout 2,3 title '$scene, $caption' font ',14'"
+      echo 'unset border; unset tics; unset key; set size ratio -1; set lmargin 0; set rmargin 0; set tmargin 3.5; set bmargin 0'
       while IFS='|' read -r name title opts; do
         echo "set title '$title'"
         echo "plot '$LOGS/fig/$name-$kind.png' binary filetype=png with rgbimage"

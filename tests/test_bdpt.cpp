@@ -304,3 +304,13 @@ TEST_CASE("--strategies writes every (s,t) image, weighted and not, and the two 
     CHECK(runCommandLine({"scenes/cornell.scene", "--heuristic", "best"}, so2, se2) == 2);
     CHECK(se2.str().find("unknown heuristic 'best'") != std::string::npos);
 }
+
+TEST_CASE("every heuristic gives Le/(1-a) = 2 in the furnace (ties between equal densities are shared)") {
+    Scene scene = sceneAt("scenes/furnace.scene", 16, 16);
+    for (Heuristic h : {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform}) {
+        RenderOptions o = quietOptions(Method::BDPT, 128, 90);
+        o.heuristic = h;
+        CAPTURE(int(h));
+        CHECK(imageMean(render(scene, o).image) == doctest::Approx(2.0).epsilon(0.005));
+    }
+}
