@@ -22,11 +22,15 @@ build/%: tests/%.cpp bdpt.cpp tests/helpers.h
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
-# Runs every test program; the last line sums their test cases ("N passed, N failed").
-test: bdpt $(TESTS)
-	@status=0; for t in $(TESTS); do echo "== $$t"; ./$$t 2>&1 | tee $$t.log; [ $${PIPESTATUS[0]} -eq 0 ] || status=1; done; \
-	cat $(addsuffix .log,$(TESTS)) | awk '/test cases:/ { p += $$6; f += $$9 } END { printf "tests: %d passed, %d failed\n", p, f }'; \
+# Runs the test programs $(1); the last line sums their test cases ("N passed, N failed").
+define run-tests
+	@status=0; for t in $(1); do echo "== $$t"; ./$$t 2>&1 | tee $$t.log; [ $${PIPESTATUS[0]} -eq 0 ] || status=1; done; \
+	cat $(addsuffix .log,$(1)) | awk '/test cases:/ { p += $$6; f += $$9 } END { printf "tests: %d passed, %d failed\n", p, f }'; \
 	exit $$status
+endef
+
+test: bdpt $(TESTS)
+	$(call run-tests,$(TESTS))
 
 # Speed against accuracy (gnuplot-nox): references once, then charts and the failure table,
 # and the slides' six-panel figure. See tests/charts.sh for the budgets.
@@ -49,7 +53,7 @@ build/san/%: tests/%.cpp bdpt.cpp tests/helpers.h
 	$(CXX) $(SANITIZE) -I. -o $@ $< $(LDLIBS)
 
 test-sanitize: bdpt $(SAN_TESTS)
-	@set -e; for t in $(SAN_TESTS); do echo "== $$t"; ASAN_OPTIONS=detect_leaks=1 ./$$t; done
+	$(call run-tests,$(SAN_TESTS))
 
 # Fuzz the scene parser with libFuzzer (clang), from the bad-scene corpus, for FUZZ_SECONDS.
 FUZZ_SECONDS ?= 60

@@ -1063,7 +1063,7 @@ inline Scene loadScene(const std::string& path) {
 // two methods shows how they differ. Paths are counted in bounces (scattering vertices): a path
 // of k segments has k-1 bounces, and --maxdepth D keeps paths with at most D bounces.
 enum class Method { PT, NEE, LT, IR, BDPT };
-enum class Heuristic;
+enum class Heuristic;  // bdpt's MIS heuristics, defined with bdpt below
 
 struct RenderOptions {
     Method method = Method::BDPT;
@@ -1589,7 +1589,8 @@ inline int strategyIndex(int s, int t) {  // rows by k, s = 0..k within a row
 
 inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, int y, Rng& rng, RowOutput& out) {
     thread_local std::vector<PathVertex> camera, light;
-    cameraSubpath(scene, opt, x + rng.uniform(), y + rng.uniform(), rng, camera);
+    float filmX = x + rng.uniform(), filmY = y + rng.uniform();  // in this order: arguments are unsequenced
+    cameraSubpath(scene, opt, filmX, filmY, rng, camera);
     lightSubpath(scene, opt, rng, light);
     Vec3 L(0);
     int here = y * scene.camera.width + x;
@@ -1626,19 +1627,17 @@ inline PassData preparePass(const Scene& scene, const RenderOptions& opt, int pa
 // One sample of pixel (x, y): what a camera path brings back; light paths add splats instead.
 inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng,
                         RowOutput& out) {
-    if (opt.method == Method::LT) {  // this pixel's random stream drives one light path
-        traceLightPath(scene, opt, rng, out.splats);
-        return Vec3(0);
+    switch (opt.method) {
+        case Method::LT: traceLightPath(scene, opt, rng, out.splats); return Vec3(0);  // this pixel's stream: one light path
+        case Method::BDPT: return radianceBDPT(scene, opt, x, y, rng, out);
+        default: break;
     }
-    if (opt.method == Method::BDPT) return radianceBDPT(scene, opt, x, y, rng, out);
-    float fx = x + rng.uniform(), fy = y + rng.uniform();
-    Ray ray = cameraRay(scene.camera, fx, fy);
+    float filmX = x + rng.uniform(), filmY = y + rng.uniform();  // in this order: arguments are unsequenced
+    Ray ray = cameraRay(scene.camera, filmX, filmY);
     switch (opt.method) {
         case Method::PT: return radiancePT(scene, opt, ray, rng);
         case Method::NEE: return radianceNEE(scene, opt, ray, rng);
-        case Method::IR: return radianceIR(scene, opt, ray, rng, pass.vpls, out);
-        case Method::BDPT: return Vec3(0);  // handled above
-        default: return Vec3(0);
+        default: return radianceIR(scene, opt, ray, rng, pass.vpls, out);
     }
 }
 
