@@ -1501,12 +1501,12 @@ inline float misWeight(const Scene& scene, const std::vector<PathVertex>& light,
     if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
     const PathVertex *qs = s > 0 ? &light[s - 1] : nullptr, *pt = &camera[t - 1];
     const PathVertex *qsMinus = s > 1 ? &light[s - 2] : nullptr, *ptMinus = t > 1 ? &camera[t - 2] : nullptr;
-    float ptRev, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
+    float ptRev = 0, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
     if (s > 0) {
         Vec3 d = pt->sp.p - qs->sp.p;  // the connection, from the light side to the camera side
         float dist2 = dot(d, d);
         Vec3 w = d / std::sqrt(dist2);
-        ptRev = pdfNext(scene, *qs, qs->wo, w, *pt, dist2);
+        ptRev = t > 1 ? pdfNext(scene, *qs, qs->wo, w, *pt, dist2) : 0;  // the pinhole is never sampled (no t = 0)
         qsRev = pdfNext(scene, *pt, pt->wo, -w, *qs, dist2);
         if (qsMinus) qsMinusRev = pdfNext(scene, *qs, w, qs->wo, *qsMinus, qs->prevDist2);
         if (ptMinus) ptMinusRev = pdfNext(scene, *pt, -w, pt->wo, *ptMinus, pt->prevDist2);

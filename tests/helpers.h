@@ -107,3 +107,13 @@ inline bool sameWithOneAndTwoThreads(const Scene& scene, RenderOptions o) {
     RenderResult b = render(scene, o);
     return std::memcmp(a.image.pixels.data(), b.image.pixels.data(), a.image.pixels.size() * sizeof(Vec3)) == 0;
 }
+
+// A material for BSDF tests: parameter is the glossy exponent or the glass ior.
+inline Material makeMaterial(Material::Type type, float albedo, float parameter = 0) {
+    Material m;
+    m.type = type;
+    m.albedo = Vec3(albedo);
+    if (type == Material::Glossy) m.exponent = parameter;
+    if (type == Material::Glass) m.ior = parameter;
+    return m;
+}

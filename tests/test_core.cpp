@@ -48,15 +48,8 @@ TEST_CASE("ray-quad: inside, edges, outside, parallel, back side") {
 // Directional albedo two ways: the mean sampling weight E[f cos / pdf], and (for non-delta lobes)
 // an independent uniform-sphere integral of evalBsdfCos. They must agree, and stay <= 1.
 TEST_CASE("BSDF albedo <= 1 and sampling consistent with evaluation") {
-    Material diffuse, glossy, mirror, glass;
-    diffuse.albedo = Vec3(0.8f);
-    glossy.type = Material::Glossy;
-    glossy.albedo = Vec3(1.0f);
-    glossy.exponent = 20;
-    mirror.type = Material::Mirror;
-    mirror.albedo = Vec3(0.9f);
-    glass.type = Material::Glass;
-    glass.ior = 1.5f;
+    Material diffuse = makeMaterial(Material::Diffuse, 0.8f), glossy = makeMaterial(Material::Glossy, 1.0f, 20),
+             mirror = makeMaterial(Material::Mirror, 0.9f), glass = makeMaterial(Material::Glass, 1.0f, 1.5f);
     const int N = 200000;
     for (Material m : {diffuse, glossy, mirror, glass}) {
         Scene scene = singleQuadScene(m);

@@ -9,13 +9,8 @@ static Vec3 randomUpper(Rng& rng) {
 }
 
 TEST_CASE("reciprocity: f(wo,wi) = f(wi,wo) for diffuse, glossy and mirror") {
-    Material diffuse, glossy, mirror;
-    diffuse.albedo = Vec3(0.7f);
-    glossy.type = Material::Glossy;
-    glossy.albedo = Vec3(0.9f);
-    glossy.exponent = 12;
-    mirror.type = Material::Mirror;
-    mirror.albedo = Vec3(0.8f);
+    Material diffuse = makeMaterial(Material::Diffuse, 0.7f), glossy = makeMaterial(Material::Glossy, 0.9f, 12),
+             mirror = makeMaterial(Material::Mirror, 0.8f);
     SurfacePoint sp = surfaceAtOrigin();
     Rng rng = makeRng(5, 0, 0);
     double worst = 0;
@@ -48,10 +43,7 @@ TEST_CASE("reciprocity: f(wo,wi) = f(wi,wo) for diffuse, glossy and mirror") {
 // the radiance weight of a refraction is (eta_o/eta_i)^2 times the importance weight, and the
 // hemispherical Fresnel reflectance inside is 1 - (1 - outside)/eta^2.
 TEST_CASE("refraction: radiance scales by (eta_o/eta_i)^2, importance does not; Fresnel inside/outside") {
-    Material glass;
-    glass.type = Material::Glass;
-    glass.ior = 1.5f;
-    Scene scene = singleQuadScene(glass);
+    Scene scene = singleQuadScene(makeMaterial(Material::Glass, 1.0f, 1.5f));
     SurfacePoint sp = surfaceAtOrigin();
     Rng rng = makeRng(6, 0, 0);
     int refracted = 0;
@@ -102,9 +94,7 @@ static double adjointAlbedo(const Scene& scene, const SurfacePoint& sp, Vec3 wo,
 }
 
 TEST_CASE("shading normals: the adjoint BSDF's albedo exceeds 1 at grazing angles (the energy generator)") {
-    Material diffuse;
-    diffuse.albedo = Vec3(0.8f);
-    Scene scene = singleQuadScene(diffuse);
+    Scene scene = singleQuadScene(makeMaterial(Material::Diffuse, 0.8f));
     Rng rng = makeRng(8, 0, 0);
     float tilt = 0.5f;  // radians
     SurfacePoint tilted = surfaceAtOrigin(Vec3(std::sin(tilt), 0, std::cos(tilt)));
