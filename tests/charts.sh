@@ -5,6 +5,7 @@
 #                             in lecture_notes/figures/, and the failure table in the README
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time
 #   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
+#   tests/charts.sh refcheck  the references' noise against the charted errors (also run by charts)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
@@ -82,6 +83,28 @@ GP
     /<!-- failure-table:end -->/ { skip = 0 }
     !skip' README.md > README.md.tmp && mv README.md.tmp README.md
   echo "failure table: $FIG/failure-table.md (and README.md)"
+  refcheck
+}
+
+# Is every reference far better than what the charts measure? Per scene: the noise of the
+# reference (RMSE between its two seeds / sqrt 2) against the smallest final RMSE of any method.
+refcheck() {
+  {
+    echo "| scene | reference spp | reference noise | smallest error of a method at ${RUN_SECONDS} s | ratio |"
+    echo "|---|---|---|---|---|"
+    for s in $SCENES; do
+      # the smallest final RMSE of this scene's runs, and which method made it
+      best=$(methods "$s" | while IFS='|' read -r label opts; do echo "$(tail -1 "$LOGS/$s-$label.csv" | cut -d, -f7) $label"; done |
+        sort -g | head -1)
+      awk -F, -v s="$s" -v best="$best" '$1 == s { split(best, b, " "); n = $6 / sqrt(2)
+        printf "| %s | %d | %.4f | %.4f (%s) | %.1f |\n", s, $4, n, b[1], b[2], b[1] / n }' scenes/refs/refs.csv
+    done
+  } > "$FIG/reference-check.md"
+  awk -v table="$FIG/reference-check.md" '
+    /<!-- reference-check:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
+    /<!-- reference-check:end -->/ { skip = 0 }
+    !skip' README.md > README.md.tmp && mv README.md.tmp README.md
+  echo "reference check: $FIG/reference-check.md (and README.md)"
 }
 
 figures() {
