@@ -1220,178 +1220,20 @@ inline CameraConnection connectToCamera(const Scene& scene, Vec3 p, Vec3 ng) {
     return c;
 }
 
-// The light vertex's own contribution to the camera (s=1, t=1): Le(y->eye) |cos_y| / p_A(y).
-inline void splatLightVertex(const Scene& scene, const LightPoint& lp, std::vector<Splat>& splats) {
-    CameraConnection c = connectToCamera(scene, lp.p, lp.n);
-    if (c.pixel < 0) return;
-    float cosLight = lp.deltaPosition ? 1 : dot(lp.n, c.toCamera);
-    if (cosLight > 0) splats.push_back({c.pixel, lp.emission * (cosLight * c.importance / lp.pdfArea)});
-}
-
-// -- (c) lt: "next event (light tracing)". Paths start on the lights with p(x,Theta) = Le|cos|/Phi
-// and every vertex is connected to the pinhole (p_{k,k}... the strategies with one camera
-// vertex). Importance flows here, so BSDFs are sampled in Transport::Importance. It renders the
-// floor caustic under the glass sphere (light -> glass -> floor -> eye) that eye paths find only
-// by hitting the light after the refraction (pt, nee: noisy) and never for a point light: no
-// connection can pass through glass, but a light path goes through it by sampling alone.
-inline void traceLightPath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<Splat>& splats) {
-    EmissionSample es = sampleEmission(scene, rng);
-    splatLightVertex(scene, es.point, splats);
-    Vec3 beta = es.weight;
-    float start = maxComponent(beta);
-    Ray ray{es.point.deltaPosition ? es.point.p : offsetPoint(es.point.p, es.point.n, es.dir), es.dir, kInf};
-    for (int bounces = 1; bounces <= opt.maxDepth && !isBlack(beta); ++bounces) {
-        Hit hit = intersect(scene, ray);
-        if (!hit.found()) break;
-        SurfacePoint sp = surfaceAt(scene, ray, hit);
-        Vec3 wo = -ray.d;  // toward the light
-        if (!isSpecular(scene.materials[scene.shapes[sp.shape].material])) {
-            CameraConnection c = connectToCamera(scene, sp.p, sp.ng);
-            if (c.pixel >= 0)
-                splats.push_back({c.pixel, beta * evalBsdfCos(scene, sp, wo, c.toCamera, Transport::Importance) * c.importance});
-        }
-        BsdfSample bs;
-        if (!sampleBsdf(scene, sp, wo, Transport::Importance, rng, bs)) break;
-        beta *= bs.weight;
-        if (!russianRoulette(beta, start, bounces, opt, rng)) break;
-        ray = spawnRay(sp, bs.wi);
-    }
-}
-
-// -- (d), (e) ir: "instant radiosity" (Keller 1997), "(clamped)". A few light paths leave virtual
-// point lights (VPLs) at their non-specular vertices; the first non-specular vertex x of a camera
-// path gathers from all of them:
-//   sum_VPL  beta_y / N  f_y(y->x) f_x(y->x->eye) G(x,y) V(x,y)
-// Unbiased for the paths it can make, but G = cos cos / d^2 is unbounded where x and y come close
-// (corners): the bright splotches of panel (d). --clamp C replaces G by min(G, C): panel (e),
-// smooth but darker, and the loss does not shrink with more passes (bias, pitfall 5).
-struct Vpl {
-    SurfacePoint sp;    // sp.shape = -1 for a point light
-    Vec3 wo;            // toward the light (zero for a light vertex)
-    Vec3 beta;          // light-path throughput arriving at y, over the number of VPL paths
-    LightPoint light;   // for a vertex on a light: its emission
-    int bounces = 0;    // scattering vertices before y on its light path
-    bool onLight = false;
-};
-
-inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, int pass) {
-    std::vector<Vpl> vpls;
-    for (int i = 0; i < opt.vplPaths; ++i) {
-        Rng rng = makeRng(opt.seed ^ 0x5bd1e995ULL, uint64_t(i), uint64_t(pass));
-        EmissionSample es = sampleEmission(scene, rng);
-        Vpl v;
-        v.onLight = true;
-        v.light = es.point;
-        v.light.emission = v.light.emission / float(opt.vplPaths);
-        vpls.push_back(v);
-        Vec3 beta = es.weight / float(opt.vplPaths);
-        float start = maxComponent(beta);
-        Ray ray{es.point.deltaPosition ? es.point.p : offsetPoint(es.point.p, es.point.n, es.dir), es.dir, kInf};
-        for (int bounces = 1; bounces < opt.maxDepth; ++bounces) {
-            Hit hit = intersect(scene, ray);
-            if (!hit.found()) break;
-            Vpl y;
-            y.sp = surfaceAt(scene, ray, hit);
-            y.wo = -ray.d;
-            y.beta = beta;
-            y.bounces = bounces;
-            if (!isSpecular(scene.materials[scene.shapes[y.sp.shape].material])) vpls.push_back(y);
-            BsdfSample bs;
-            if (!sampleBsdf(scene, y.sp, y.wo, Transport::Importance, rng, bs)) break;
-            beta *= bs.weight;
-            if (!russianRoulette(beta, start, bounces, opt, rng)) break;
-            ray = spawnRay(y.sp, bs.wi);
-        }
-    }
-    return vpls;
-}
-
-inline Vec3 gatherVpls(const Scene& scene, const RenderOptions& opt, const std::vector<Vpl>& vpls, const SurfacePoint& x,
-                       Vec3 wo, int cameraBounces, RowOutput& out) {
-    Vec3 sum(0);
-    for (const Vpl& v : vpls) {
-        if (v.bounces + cameraBounces + 1 > opt.maxDepth) continue;
-        Vec3 yPos = v.onLight ? v.light.p : v.sp.p, yNormal = v.onLight ? v.light.n : v.sp.ng;
-        Vec3 d = yPos - x.p;
-        float dist2 = dot(d, d);
-        if (!(dist2 > 0)) continue;
-        Vec3 wi = d / std::sqrt(dist2);
-        Vec3 fx = evalBsdfCos(scene, x, wo, wi, Transport::Radiance);
-        if (isBlack(fx)) continue;
-        Vec3 fy;  // the VPL's side, cosine included
-        if (v.onLight) {
-            float cosLight = v.light.deltaPosition ? 1 : dot(v.light.n, -wi);
-            if (cosLight <= 0) continue;
-            fy = v.light.emission * (cosLight / v.light.pdfArea);
-        } else {
-            fy = v.beta * evalBsdfCos(scene, v.sp, v.wo, -wi, Transport::Importance);
-        }
-        if (isBlack(fy) || occluded(scene, shadowRay(x.p, x.ng, yPos, yNormal))) continue;
-        Vec3 c = fx * fy / dist2;
-        if (opt.clamp > 0) {
-            float G = absDot(wi, x.ng) * (isBlack(yNormal) ? 1 : absDot(wi, yNormal)) / dist2;
-            double before = average(c);
-            if (G > opt.clamp) c *= opt.clamp / G;
-            out.energyUnclamped += before;
-            out.energyClamped += average(c);
-        }
-        sum += c;
-    }
-    return sum;
-}
-
-// The camera half of ir: follow specular bounces, gather at the first non-specular vertex.
-inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rng& rng, const std::vector<Vpl>& vpls,
-                       RowOutput& out) {
-    Vec3 L(0), beta(1);
-    for (int bounces = 0; bounces <= opt.maxDepth; ++bounces) {
-        Hit hit = intersect(scene, ray);
-        if (!hit.found()) break;
-        SurfacePoint sp = surfaceAt(scene, ray, hit);
-        Vec3 wo = -ray.d;
-        L += beta * emittedRadiance(scene, sp, wo);
-        if (!isSpecular(scene.materials[scene.shapes[sp.shape].material]))
-            return L + beta * gatherVpls(scene, opt, vpls, sp, wo, bounces, out);
-        BsdfSample bs;
-        if (bounces == opt.maxDepth || !sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
-        beta *= bs.weight;
-        ray = spawnRay(sp, bs.wi);
-    }
-    return L;
-}
-
-// -- (f) bdpt: "bidirectional path tracing" (Lafortune & Willems 1993; Veach & Guibas 1995).
-// One camera subpath z_0..z_{t-1} (z_0 the pinhole) and one light subpath y_0..y_{s-1} (y_0 on a
-// light) per sample; every pair is connected, which makes the path x_0..x_k = y_0..y_{s-1}
-// z_{t-1}..z_0 of k = s+t-1 segments with the strategy the slides call p_{k,s} ("m vertices
-// from the light"): s = 0 the camera path hits an emitter, s = 1 next event, t = 1 light
-// tracing, the rest "connect paths deterministically (every pair of two hit points)". Each
-// strategy alone is unbiased for the paths it can make; MIS combines them: C = sum w_ij C_ij.
-//
-// The weights are computed pbrt-style: every vertex stores pdfFwd, the area density with which
-// its own subpath sampled it, and pdfRev, the density with which the other side would have. For
-// the path made by strategy s the density of strategy i differs by a chain of such ratios:
-//     p_{i+1}/p_i = pdfFwd(x_i) / pdfRev(x_i),    walking away from the connection,
-// so r_i = p_i/p_s costs one multiplication per vertex, and a heuristic maps the r_i to w_s:
-//     balance w_s = 1/(1 + sum r_i)   power w_s = 1/(1 + sum r_i^2)   (Veach ch. 9)
-//     max     w_s = 1 if no r_i > 1   (the slides' "choose p_X(pi) maximum"; ties, to 1e-4, share)
-//     uniform w_s = 1/(1 + #{r_i > 0})   (every strategy able to make the path, equally)
-// We chose the ratio walk over SmallVCM's recursive quantities: each factor is a density one can
-// point at on the slide, and one walk serves all four heuristics.
-// Delta events (mirror, glass, point light) get density 0, read as 1 in the ratios (the same delta
-// appears in every strategy's density), and a strategy that would have to connect at a delta
-// vertex or hit a point light is skipped: its density is 0 (pitfall 4).
-// Russian roulette ends subpaths; the weights leave its probabilities out: they still sum to 1
-// for every path, so the sum stays unbiased (SmallVCM folds them in, which is nearer optimal).
-enum class Heuristic { Balance, Power, Max, Uniform };
-
+// -- Subpaths, shared by lt, ir and bdpt (slides: "Generating light paths", "Extension of paths
+// at hit points"). A subpath is a list of vertices, each with the throughput beta that reached it;
+// a connection joins a light-side vertex y to a camera-side vertex x and multiplies the one
+// factor G f f of T(pi) that neither side sampled: both scattering factors (their cosines
+// included, section 4) and 1/d^2; V is a shadow ray. Light tracing is the connection to the
+// pinhole (t = 1) alone, instant radiosity the connection of one camera vertex to stored light
+// vertices, bdpt every connection.
 struct PathVertex {
     enum Type { Camera, Light, Surface } type = Surface;
     SurfacePoint sp;        // p and ng for every type; sp.shape < 0 for the pinhole and point lights
     Vec3 wo;                // surface: unit vector toward the previous vertex of its own subpath
     float prevDist2 = 0;    // squared distance to that vertex
     Vec3 beta;              // subpath throughput up to this vertex (light: Le/p_A or I/P(light))
-    float pdfFwd = 0, pdfRev = 0;  // area densities, see above
+    float pdfFwd = 0, pdfRev = 0;  // area densities for bdpt's MIS (see its banner below)
     bool delta = false;          // a delta BSDF was sampled here
     bool deltaPosition = false;  // the pinhole, a point light
     int light = -1;              // the light y_0 was sampled on
@@ -1491,6 +1333,144 @@ inline void lightSubpath(const Scene& scene, const RenderOptions& opt, Rng& rng,
     randomWalk(scene, opt, ray, es.weight, opt.maxDepth, Transport::Importance, rng, path);
 }
 
+// Mirrors and glass cannot be connected to: the direction is fixed by the other vertex.
+inline bool connectable(const Scene& scene, const PathVertex& v) {
+    return v.type != PathVertex::Surface || !isSpecular(scene.materials[scene.shapes[v.sp.shape].material]);
+}
+
+// A light-side vertex seen through the pinhole (the t = 1 connection); pixel -1 if it is not seen.
+inline Vec3 connectToPinhole(const Scene& scene, const PathVertex& y, int& pixel) {
+    CameraConnection c = connectToCamera(scene, y.sp.p, y.sp.ng);
+    pixel = c.pixel;
+    if (c.pixel < 0) return Vec3(0);
+    return y.beta * scatterTowards(scene, y, c.toCamera, Transport::Importance) * c.importance;
+}
+
+// Light-side vertex y joined to camera-side vertex x, before the visibility test.
+inline Vec3 connectVertices(const Scene& scene, const PathVertex& y, const PathVertex& x) {
+    Vec3 d = x.sp.p - y.sp.p;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0)) return Vec3(0);
+    Vec3 w = d / std::sqrt(dist2);  // from the light side to the camera side
+    return y.beta * scatterTowards(scene, y, w, Transport::Importance) * scatterTowards(scene, x, -w, Transport::Radiance) *
+           x.beta / dist2;
+}
+
+inline bool mutuallyVisible(const Scene& scene, const PathVertex& a, const PathVertex& b) {
+    return !occluded(scene, shadowRay(a.sp.p, a.sp.ng, b.sp.p, b.sp.ng));  // ng = 0: no surface to leave
+}
+
+// -- (c) lt: "next event (light tracing)". Paths start on the lights with p(x,Theta) = Le|cos|/Phi
+// and every vertex is connected to the pinhole (p_{k,k}... the strategies with one camera
+// vertex). Importance flows here, so BSDFs are sampled in Transport::Importance. It renders the
+// floor caustic under the glass sphere (light -> glass -> floor -> eye) that eye paths find only
+// by hitting the light after the refraction (pt, nee: noisy) and never for a point light: no
+// connection can pass through glass, but a light path goes through it by sampling alone.
+inline void traceLightPath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<Splat>& splats) {
+    thread_local std::vector<PathVertex> light;
+    lightSubpath(scene, opt, rng, light);
+    for (const PathVertex& y : light) {
+        int pixel = -1;
+        Vec3 c = connectable(scene, y) ? connectToPinhole(scene, y, pixel) : Vec3(0);
+        if (pixel >= 0) splats.push_back({pixel, c});
+    }
+}
+
+// -- (d), (e) ir: "instant radiosity" (Keller 1997), "(clamped)". A few light paths leave virtual
+// point lights (VPLs) at their non-specular vertices; the first non-specular vertex x of a camera
+// path gathers from all of them:
+//   sum_VPL  beta_y / N  f_y(y->x) f_x(y->x->eye) G(x,y) V(x,y)
+// Unbiased for the paths it can make, but G = cos cos / d^2 is unbounded where x and y come close
+// (corners): the bright splotches of panel (d). --clamp C replaces G by min(G, C): panel (e),
+// smooth but darker, and the loss does not shrink with more passes (bias, pitfall 5).
+struct Vpl {
+    PathVertex y;       // a light-subpath vertex, its beta divided by the number of VPL paths
+    int bounces = 0;    // scattering vertices before y on its light path
+};
+
+inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, int pass) {
+    std::vector<Vpl> vpls;
+    std::vector<PathVertex> path;
+    for (int i = 0; i < opt.vplPaths; ++i) {
+        Rng rng = makeRng(opt.seed ^ 0x5bd1e995ULL, uint64_t(i), uint64_t(pass));
+        lightSubpath(scene, opt, rng, path);
+        for (size_t k = 0; k < path.size(); ++k) {
+            if (!connectable(scene, path[k])) continue;
+            vpls.push_back({path[k], int(k)});
+            vpls.back().y.beta = path[k].beta / float(opt.vplPaths);
+        }
+    }
+    return vpls;
+}
+
+inline Vec3 gatherVpls(const Scene& scene, const RenderOptions& opt, const std::vector<Vpl>& vpls, const PathVertex& x,
+                       int cameraBounces, RowOutput& out) {
+    Vec3 sum(0);
+    for (const Vpl& v : vpls) {
+        if (v.bounces + cameraBounces + 1 > opt.maxDepth) continue;
+        Vec3 c = connectVertices(scene, v.y, x);
+        if (isBlack(c) || !mutuallyVisible(scene, v.y, x)) continue;
+        if (opt.clamp > 0) {
+            Vec3 d = x.sp.p - v.y.sp.p;
+            float dist2 = dot(d, d);
+            Vec3 w = d / std::sqrt(dist2);
+            float G = absDot(w, x.sp.ng) * cosAt(v.y, w) / dist2;
+            double before = average(c);
+            if (G > opt.clamp) c *= opt.clamp / G;
+            out.energyUnclamped += before;
+            out.energyClamped += average(c);
+        }
+        sum += c;
+    }
+    return sum;
+}
+
+// The camera half of ir: follow specular bounces, gather at the first non-specular vertex.
+inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rng& rng, const std::vector<Vpl>& vpls,
+                       RowOutput& out) {
+    Vec3 L(0), beta(1);
+    for (int bounces = 0; bounces <= opt.maxDepth; ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        PathVertex x;
+        x.sp = surfaceAt(scene, ray, hit);
+        x.wo = -ray.d;
+        x.beta = Vec3(1);
+        L += beta * emittedRadiance(scene, x.sp, x.wo);
+        if (connectable(scene, x)) return L + beta * gatherVpls(scene, opt, vpls, x, bounces, out);
+        BsdfSample bs;
+        if (bounces == opt.maxDepth || !sampleBsdf(scene, x.sp, x.wo, Transport::Radiance, rng, bs)) break;
+        beta *= bs.weight;
+        ray = spawnRay(x.sp, bs.wi);
+    }
+    return L;
+}
+
+// -- (f) bdpt: "bidirectional path tracing" (Lafortune & Willems 1993; Veach & Guibas 1995).
+// One camera subpath z_0..z_{t-1} (z_0 the pinhole) and one light subpath y_0..y_{s-1} (y_0 on a
+// light) per sample; every pair is connected, which makes the path x_0..x_k = y_0..y_{s-1}
+// z_{t-1}..z_0 of k = s+t-1 segments with the strategy the slides call p_{k,s} ("m vertices
+// from the light"): s = 0 the camera path hits an emitter, s = 1 next event, t = 1 light
+// tracing, the rest "connect paths deterministically (every pair of two hit points)". Each
+// strategy alone is unbiased for the paths it can make; MIS combines them: C = sum w_ij C_ij.
+//
+// The weights are computed pbrt-style: every vertex stores pdfFwd, the area density with which
+// its own subpath sampled it, and pdfRev, the density with which the other side would have. For
+// the path made by strategy s the density of strategy i differs by a chain of such ratios:
+//     p_{i+1}/p_i = pdfFwd(x_i) / pdfRev(x_i),    walking away from the connection,
+// so r_i = p_i/p_s costs one multiplication per vertex, and a heuristic maps the r_i to w_s:
+//     balance w_s = 1/(1 + sum r_i)   power w_s = 1/(1 + sum r_i^2)   (Veach ch. 9)
+//     max     w_s = 1 if no r_i > 1   (the slides' "choose p_X(pi) maximum"; ties, to 1e-4, share)
+//     uniform w_s = 1/(1 + #{r_i > 0})   (every strategy able to make the path, equally)
+// We chose the ratio walk over SmallVCM's recursive quantities: each factor is a density one can
+// point at on the slide, and one walk serves all four heuristics.
+// Delta events (mirror, glass, point light) get density 0, read as 1 in the ratios (the same delta
+// appears in every strategy's density), and a strategy that would have to connect at a delta
+// vertex or hit a point light is skipped: its density is 0 (pitfall 4).
+// Russian roulette ends subpaths; the weights leave its probabilities out: they still sum to 1
+// for every path, so the sum stays unbiased (SmallVCM folds them in, which is nearer optimal).
+enum class Heuristic { Balance, Power, Max, Uniform };
+
 // w_{s,t} for the path that strategy (s,t) made from light[0..s-1] and camera[0..t-1]. The
 // connection changes the reverse densities of the (up to) four vertices next to it: those are
 // computed here and override the stored ones during the walk.
@@ -1563,22 +1543,11 @@ inline Vec3 connectStrategy(const Scene& scene, const std::vector<PathVertex>& l
         return pt.beta * emittedRadiance(scene, pt.sp, pt.wo);
     }
     const PathVertex& qs = light[s - 1];
-    if (qs.type == PathVertex::Surface && isSpecular(scene.materials[scene.shapes[qs.sp.shape].material])) return Vec3(0);
-    if (t == 1) {  // light tracing: qs to the pinhole
-        CameraConnection c = connectToCamera(scene, qs.sp.p, qs.deltaPosition ? Vec3(0) : qs.sp.ng);
-        pixel = c.pixel;
-        if (c.pixel < 0) return Vec3(0);
-        return qs.beta * scatterTowards(scene, qs, c.toCamera, Transport::Importance) * c.importance;
-    }
-    if (isSpecular(scene.materials[scene.shapes[pt.sp.shape].material])) return Vec3(0);
-    Vec3 d = pt.sp.p - qs.sp.p;
-    float dist2 = dot(d, d);
-    if (!(dist2 > 0)) return Vec3(0);
-    Vec3 w = d / std::sqrt(dist2);  // from the light side to the camera side
-    Vec3 c = qs.beta * scatterTowards(scene, qs, w, Transport::Importance) * scatterTowards(scene, pt, -w, Transport::Radiance) *
-             pt.beta / dist2;
-    if (isBlack(c) || occluded(scene, shadowRay(qs.sp.p, qs.deltaPosition ? Vec3(0) : qs.sp.ng, pt.sp.p, pt.sp.ng))) return Vec3(0);
-    return c;
+    if (!connectable(scene, qs)) return Vec3(0);
+    if (t == 1) return connectToPinhole(scene, qs, pixel);  // light tracing
+    if (!connectable(scene, pt)) return Vec3(0);
+    Vec3 c = connectVertices(scene, qs, pt);
+    return isBlack(c) || !mutuallyVisible(scene, qs, pt) ? Vec3(0) : c;
 }
 
 // Per-strategy images (--strategies): strategy (s,t) with path length k = s+t-1 <= maxLength.
