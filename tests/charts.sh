@@ -5,13 +5,16 @@
 #                             in lecture_notes/figures/, and the failure table in the README
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time
 #   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
+#   tests/charts.sh tables    the failure table and the reference check from the runs' logs
 #   tests/charts.sh refcheck  the references' noise against the charted errors (also run by charts)
+# SCENES="a b" limits refs and charts to some scenes (the tables always cover all of them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
 REF_SECONDS=${REF_SECONDS:-90}    # per reference seed: far more than a run, so its noise is far below
 RUN_SECONDS=${RUN_SECONDS:-4}     # per method and scene (90 runs: 6 minutes)
-SCENES=${SCENES:-"cornell cornell-point cornell-glass indirect furnace refraction shading-normals sds sds-point"}
+ALL_SCENES="cornell cornell-point cornell-glass indirect furnace refraction shading-normals sds sds-point"
+SCENES=${SCENES:-$ALL_SCENES}
 FIG=lecture_notes/figures
 LOGS=build/charts
 mkdir -p "$FIG" "$LOGS/refs" scenes/refs
@@ -27,24 +30,56 @@ methods() {
     "bdpt-uniform|--method bdpt --heuristic uniform"
 }
 
+# The method that converges fastest on each scene at the chart resolution (measured: its two seeds
+# differ least after equal time), so the reference beats every charted run by the widest margin.
+refMethod() {
+  case $1 in
+    cornell|indirect|shading-normals) echo lt ;;  # diffuse and glossy: one light path lands on many pixels
+    cornell-glass) echo nee ;;
+    refraction|sds) echo pt ;;                    # light arrives through glass: eye paths hit the sky/lamp
+    *) echo bdpt ;;                               # point lights: lt would show the light as a pixel
+  esac
+}
+
+# sds-point's bdpt makes the fewest samples per second: 4 times the time for the same margin.
+refSeconds() { if [ "$1" = sds-point ]; then echo $((REF_SECONDS * 4)); else echo "$REF_SECONDS"; fi; }
+
+# Per scene: the chosen method with two seeds no chart run uses (charts use seed 1), refSeconds
+# each; the reference is their mean, and their difference measures its noise. The furnace has an
+# exact answer, Le / (1 - albedo) = 2 in every pixel, written directly. SCENES=... remakes some
+# references and keeps the rows of the others in refs.csv.
 refs() {
-  echo "scene,method,seconds_per_seed,spp_seed1,spp_seed2,rmse_between_seeds,relmse_between_seeds" > scenes/refs/refs.csv.tmp
+  local csv=scenes/refs/refs.csv row
+  [ -f $csv ] || echo "scene,method,seconds_per_seed,spp_seed1,spp_seed2,rmse_between_seeds,relmse_between_seeds" > $csv
   for s in $SCENES; do
-    # bdpt everywhere but the shading-normal scene, whose adjoint BSDF gives bdpt's light paths heavy tails
-    m=bdpt; [ "$s" = shading-normals ] && m="nee --mis"
-    for seed in 1 2; do
-      ./bdpt scenes/$s.scene --method $m --res "$RES" --time "$REF_SECONDS" --seed $seed --quiet \
-        --out scenes/refs/$s-seed$seed.png --log "$LOGS/refs/$s-$seed.csv"
-    done
-    mv scenes/refs/$s-seed1.pfm scenes/refs/$s.pfm
-    mv scenes/refs/$s-seed1.png scenes/refs/$s.png
-    diff=$(./bdpt --compare scenes/refs/$s-seed2.pfm scenes/refs/$s.pfm)
-    rm -f scenes/refs/$s-seed2.pfm scenes/refs/$s-seed2.png
-    spp1=$(tail -1 "$LOGS/refs/$s-1.csv" | cut -d, -f5); spp2=$(tail -1 "$LOGS/refs/$s-2.csv" | cut -d, -f5)
-    echo "$s,$m,$REF_SECONDS,$spp1,$spp2,$(echo "$diff" | awk '{print $2","$4}')" >> scenes/refs/refs.csv.tmp
-    echo "reference $s: $m, $spp1 spp in $REF_SECONDS s; seed 1 vs seed 2: $diff"
+    if [ "$s" = furnace ]; then
+      furnaceReference scenes/refs/furnace.pfm
+      ./bdpt --average scenes/refs/furnace.pfm scenes/refs/furnace.pfm --out scenes/refs/furnace.png
+      row="furnace,analytic,0,0,0,0,0"
+      echo "reference furnace: analytic, 2 in every pixel"
+    else
+      local m secs
+      m=$(refMethod "$s"); secs=$(refSeconds "$s")
+      for seed in 101 102; do
+        # shellcheck disable=SC2086
+        ./bdpt scenes/$s.scene --method $m --res "$RES" --time "$secs" --seed $seed --quiet \
+          --out "$LOGS/refs/$s-$seed.png" --log "$LOGS/refs/$s-$seed.csv"
+      done
+      ./bdpt --average "$LOGS/refs/$s-101.pfm" "$LOGS/refs/$s-102.pfm" --out scenes/refs/$s.png
+      diff=$(./bdpt --compare "$LOGS/refs/$s-102.pfm" "$LOGS/refs/$s-101.pfm")
+      spp1=$(tail -1 "$LOGS/refs/$s-101.csv" | cut -d, -f5); spp2=$(tail -1 "$LOGS/refs/$s-102.csv" | cut -d, -f5)
+      row="$s,$m,$secs,$spp1,$spp2,$(echo "$diff" | awk '{print $2","$4}')"
+      echo "reference $s: $m, $spp1 + $spp2 spp in 2 x $secs s; seed 101 vs seed 102: $diff"
+    fi
+    { grep -v "^$s," $csv; echo "$row"; } > $csv.tmp && mv $csv.tmp $csv
   done
-  mv scenes/refs/refs.csv.tmp scenes/refs/refs.csv
+}
+
+# A PFM of the resolution RES whose every value is 2.0f (bytes 00 00 00 40, little-endian).
+furnaceReference() {
+  local w=${RES%x*} h=${RES#*x}
+  { printf 'PF\n%d %d\n-1.0\n' "$w" "$h"
+    for ((i = 0; i < w * h * 3; ++i)); do printf '\x00\x00\x00\x40'; done; } > "$1.tmp" && mv "$1.tmp" "$1"
 }
 
 charts() {
@@ -59,7 +94,9 @@ charts() {
       plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:7 with lines lw 2 lc rgb '#${colors[c]}' title '$label'"
       c=$((c + 1))
     done < <(methods "$s")
-    refnoise=$(awk -F, -v s="$s" '$1 == s { print $6 / sqrt(2) }' scenes/refs/refs.csv)
+    refnoise=$(awk -F, -v s="$s" '$1 == s { print $6 / 2 }' scenes/refs/refs.csv)
+    # an exact reference (the furnace) has no noise to draw on a log scale
+    [ "${refnoise:-0}" = 0 ] || plot="$plot, $refnoise with lines dt 2 lc rgb 'black' title 'reference noise'"
     gnuplot <<GP
 set terminal pngcairo size 800,560 font "sans,11"
 set output "$FIG/error-vs-time-$s.png"
@@ -70,10 +107,16 @@ set grid
 set title "$s ($RES): RMSE against the reference, same time for every method"
 set xlabel "seconds (2 threads)"
 set ylabel "RMSE"
-plot $plot, ${refnoise:-0} with lines dt 2 lc rgb "black" title "reference noise"
+set format y "%g"
+plot $plot
 GP
     echo "chart $FIG/error-vs-time-$s.png"
   done
+  SCENES=$ALL_SCENES tables
+}
+
+# The failure table and the reference check, from the logs of every scene's runs.
+tables() {
   local logs=()
   for s in $SCENES; do while IFS='|' read -r label opts; do logs+=("$LOGS/$s-$label.csv"); done < <(methods "$s"); done
   ./bdpt --failure-table "${logs[@]}" > "$FIG/failure-table.md"
@@ -87,17 +130,18 @@ GP
 }
 
 # Is every reference far better than what the charts measure? Per scene: the noise of the
-# reference (RMSE between its two seeds / sqrt 2) against the smallest final RMSE of any method.
+# reference (the mean of two seeds: RMSE between them / 2) against the smallest final RMSE of any method.
 refcheck() {
   {
-    echo "| scene | reference spp | reference noise | smallest error of a method at ${RUN_SECONDS} s | ratio |"
-    echo "|---|---|---|---|---|"
+    echo "| scene | reference | spp (2 seeds) | reference noise | smallest error of a method at ${RUN_SECONDS} s | ratio |"
+    echo "|---|---|---|---|---|---|"
     for s in $SCENES; do
       # the smallest final RMSE of this scene's runs, and which method made it
       best=$(methods "$s" | while IFS='|' read -r label opts; do echo "$(tail -1 "$LOGS/$s-$label.csv" | cut -d, -f7) $label"; done |
         sort -g | head -1)
-      awk -F, -v s="$s" -v best="$best" '$1 == s { split(best, b, " "); n = $6 / sqrt(2)
-        printf "| %s | %d | %.4f | %.4f (%s) | %.1f |\n", s, $4, n, b[1], b[2], b[1] / n }' scenes/refs/refs.csv
+      awk -F, -v s="$s" -v best="$best" '$1 == s { split(best, b, " "); n = $6 / 2
+        if ($2 == "analytic") printf "| %s | analytic | - | 0 | %.4f (%s) | exact |\n", s, b[1], b[2]
+        else printf "| %s | %s, 2 x %d s | %d + %d | %.5f | %.4f (%s) | %.1f |\n", s, $2, $3, $4, $5, n, b[1], b[2], b[1] / n }' scenes/refs/refs.csv
     done
   } > "$FIG/reference-check.md"
   awk -v table="$FIG/reference-check.md" '

@@ -25,6 +25,24 @@ TEST_CASE("metrics on synthetic images with known answers") {
     CHECK(compareToReference(dark, ref).relMse == doctest::Approx(0.25 / 1.01).epsilon(1e-4));
 }
 
+TEST_CASE("--average: the mean of two references, and refusal of images of different sizes") {
+    Image one = constantImage(6, 4, 1), three = constantImage(6, 4, 3), small = constantImage(4, 4, 1);
+    three.at(5, 3) = Vec3(7, 9, 11);  // a corner, to see the rows are not flipped
+    REQUIRE(writePFM(one, "build/tmp_avg_a.pfm"));
+    REQUIRE(writePFM(three, "build/tmp_avg_b.pfm"));
+    REQUIRE(writePFM(small, "build/tmp_avg_small.pfm"));
+    std::ostringstream so, se;
+    CHECK(runCommandLine({"--average", "build/tmp_avg_a.pfm", "build/tmp_avg_b.pfm", "--out", "build/tmp_avg.png"}, so, se) == 0);
+    Image mean;
+    REQUIRE(readPFM("build/tmp_avg.pfm", mean));
+    CHECK(mean.width == 6);
+    CHECK(mean.at(0, 0).y == 2.0f);
+    CHECK(mean.at(5, 3).z == 6.0f);
+    CHECK(fileExists("build/tmp_avg.png"));
+    CHECK(runCommandLine({"--average", "build/tmp_avg_a.pfm", "build/tmp_avg_small.pfm", "--out", "build/tmp_avg2.png"}, so, se) == 2);
+    CHECK(!fileExists("build/tmp_avg2.pfm"));
+}
+
 TEST_CASE("the failure table: slope of log(rmse) against log(time), last bias, fireflies and NaNs") {
     std::ofstream a("build/tmp_converges.csv"), b("build/tmp_biased.csv");
     a << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count\n";
