@@ -32,13 +32,17 @@ define run-tests
 	exit $$status
 endef
 
-# The BVH tests once more as built by NATIVE=1: 8-wide AVX nodes where the CPU has AVX.
+# The BVH tests once more as built by NATIVE=1 (8-wide AVX nodes where the CPU has AVX), and as
+# on a CPU without SSE (the scalar box test).
 build/native/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h
 	@mkdir -p build/native
 	$(CXX) $(CXXFLAGS) $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
+build/scalar/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h
+	@mkdir -p build/scalar
+	$(CXX) $(CXXFLAGS) -U__SSE2__ -U__AVX__ -I. -o $@ $< $(LDLIBS)
 
-test: bdpt $(TESTS) build/native/test_bvh
-	$(call run-tests,$(TESTS) build/native/test_bvh)
+test: bdpt $(TESTS) build/native/test_bvh build/scalar/test_bvh
+	$(call run-tests,$(TESTS) build/native/test_bvh build/scalar/test_bvh)
 
 # Speed against accuracy (gnuplot-nox): references once, then charts and the failure table,
 # and the slides' six-panel figure. See tests/charts.sh for the budgets.
