@@ -307,8 +307,18 @@ struct SpherePrimitive { Vec3 centre; float radius; };
 struct QuadPrimitive { Vec3 q, u, v, w; };  // corner, edges, w = n/(n.n)
 
 // Node width: 8 children where the CPU has 256-bit AVX registers (make NATIVE=1), else 4 (SSE).
+// Lanes holds one float per child, and SIMD(op) names the intrinsic of that width: the slab test
+// below is written once for both.
 #if defined(__AVX__)
 constexpr int kWidth = 8;
+using Lanes = __m256;
+#define SIMD(op) _mm256_##op
+inline Lanes lessEqual(Lanes a, Lanes b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
+#elif defined(__SSE2__)
+constexpr int kWidth = 4;
+using Lanes = __m128;
+#define SIMD(op) _mm_##op
+inline Lanes lessEqual(Lanes a, Lanes b) { return _mm_cmple_ps(a, b); }
 #else
 constexpr int kWidth = 4;
 #endif
@@ -453,10 +463,8 @@ inline Bvh buildBvh(const std::vector<Shape>& shapes) {
 // The ray's constants for the slab tests.
 struct RayBoxTest {
     int nearX, nearY, nearZ;   // which row of BvhNode::box is the entry plane on each axis
-#if defined(__AVX__)
-    __m256 ox, oy, oz, ix, iy, iz;
-#elif defined(__SSE2__)
-    __m128 ox, oy, oz, ix, iy, iz;
+#if defined(__SSE2__)
+    Lanes ox, oy, oz, ix, iy, iz;
 #else
     Vec3 o, inv;
 #endif
@@ -465,12 +473,9 @@ struct RayBoxTest {
         nearX = inv.x >= 0 ? 0 : 1;
         nearY = inv.y >= 0 ? 2 : 3;
         nearZ = inv.z >= 0 ? 4 : 5;
-#if defined(__AVX__)
-        ox = _mm256_set1_ps(r.o.x); oy = _mm256_set1_ps(r.o.y); oz = _mm256_set1_ps(r.o.z);
-        ix = _mm256_set1_ps(inv.x); iy = _mm256_set1_ps(inv.y); iz = _mm256_set1_ps(inv.z);
-#elif defined(__SSE2__)
-        ox = _mm_set1_ps(r.o.x); oy = _mm_set1_ps(r.o.y); oz = _mm_set1_ps(r.o.z);
-        ix = _mm_set1_ps(inv.x); iy = _mm_set1_ps(inv.y); iz = _mm_set1_ps(inv.z);
+#if defined(__SSE2__)
+        ox = SIMD(set1_ps)(r.o.x), oy = SIMD(set1_ps)(r.o.y), oz = SIMD(set1_ps)(r.o.z);
+        ix = SIMD(set1_ps)(inv.x), iy = SIMD(set1_ps)(inv.y), iz = SIMD(set1_ps)(inv.z);
 #else
         o = r.o;
         this->inv = inv;
@@ -480,24 +485,14 @@ struct RayBoxTest {
     int test(const BvhNode& n, float tmax, float tEntry[kWidth]) const {
         constexpr float kWiden = 1 + 2 * (3 * 0x1p-24f) / (1 - 3 * 0x1p-24f);  // 1 + 2 gamma_3
         // Each candidate (possibly NaN) is the first operand, the running bound the second.
-#if defined(__AVX__)
-        __m256 t0 = _mm256_max_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[nearZ]), oz), iz), _mm256_setzero_ps());
-        t0 = _mm256_max_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[nearY]), oy), iy), t0);
-        t0 = _mm256_max_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[nearX]), ox), ix), t0);
-        __m256 t1 = _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[nearZ ^ 1]), oz), iz), _mm256_set1_ps(tmax));
-        t1 = _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[nearY ^ 1]), oy), iy), t1);
-        t1 = _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[nearX ^ 1]), ox), ix), t1);
-        _mm256_storeu_ps(tEntry, t0);
-        return _mm256_movemask_ps(_mm256_cmp_ps(t0, _mm256_mul_ps(t1, _mm256_set1_ps(kWiden)), _CMP_LE_OQ));
-#elif defined(__SSE2__)
-        __m128 t0 = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearZ]), oz), iz), _mm_setzero_ps());
-        t0 = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearY]), oy), iy), t0);
-        t0 = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearX]), ox), ix), t0);
-        __m128 t1 = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearZ ^ 1]), oz), iz), _mm_set1_ps(tmax));
-        t1 = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearY ^ 1]), oy), iy), t1);
-        t1 = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[nearX ^ 1]), ox), ix), t1);
-        _mm_storeu_ps(tEntry, t0);
-        return _mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(kWiden))));
+#if defined(__SSE2__)
+        auto slab = [&](int row, Lanes o, Lanes inv) { return SIMD(mul_ps)(SIMD(sub_ps)(SIMD(load_ps)(n.box[row]), o), inv); };
+        Lanes t0 = SIMD(max_ps)(slab(nearZ, oz, iz), SIMD(setzero_ps)());
+        t0 = SIMD(max_ps)(slab(nearX, ox, ix), SIMD(max_ps)(slab(nearY, oy, iy), t0));
+        Lanes t1 = SIMD(min_ps)(slab(nearZ ^ 1, oz, iz), SIMD(set1_ps)(tmax));
+        t1 = SIMD(min_ps)(slab(nearX ^ 1, ox, ix), SIMD(min_ps)(slab(nearY ^ 1, oy, iy), t1));
+        SIMD(storeu_ps)(tEntry, t0);
+        return SIMD(movemask_ps)(lessEqual(t0, SIMD(mul_ps)(t1, SIMD(set1_ps)(kWiden))));
 #else
         int mask = 0;
         for (int i = 0; i < kWidth; ++i) {
