@@ -515,7 +515,7 @@ inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
     if (bvh.nodes.empty()) return hit;
     RayBoxTest boxTest(ray);
     Ray r = ray;
-    struct Entry { int32_t node; float t; } stack[64 * kWidth];
+    struct Entry { int32_t node; float t; } stack[64 * kWidth];  // at most W-1 more per level
     int top = 0;
     stack[top++] = {0, 0};
     while (top > 0) {
@@ -2249,8 +2249,8 @@ struct CommandLine {
     int benchN = 100000, benchReps = 5, strategyLength = 5;
     std::string strategiesDir, refPath, logPath;
     std::vector<std::string> failureLogs;
-    std::string compareA, compareB;
-    bool average = false;  // --average: the mean of compareA and compareB, written to out
+    std::string pfmA, pfmB;  // --compare or --average: the two images
+    bool average = false;    // --average: write their mean to out
     size_t benchM = 4194304;
 };
 
@@ -2314,8 +2314,8 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (a == "--log") cl.logPath = value(i);
         else if (a == "--compare" || a == "--average") {
             cl.average = a == "--average";
-            cl.compareA = value(i);
-            cl.compareB = value(i);
+            cl.pfmA = value(i);
+            cl.pfmB = value(i);
         } else if (a == "--failure-table") {
             cl.failureLogs.assign(args.begin() + i + 1, args.end());
             if (cl.failureLogs.empty()) fail("--failure-table needs log files");
@@ -2337,7 +2337,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (cl.scenePath.empty()) cl.scenePath = a;
         else fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
     }
-    if (!cl.help && !cl.benchRays && cl.failureLogs.empty() && cl.compareA.empty() && cl.scenePath.empty()) fail("no scene file given");
+    if (!cl.help && !cl.benchRays && cl.failureLogs.empty() && cl.pfmA.empty() && cl.scenePath.empty()) fail("no scene file given");
     if (!cl.help && replaceExtension(cl.out, ".pfm") == cl.out) fail("--out must not end in .pfm (the PFM goes beside the PNG)");
     if (!cl.strategiesDir.empty()) {
         if (cl.opt.method != Method::BDPT) fail("--strategies needs --method bdpt");
@@ -2361,10 +2361,10 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         if (cl.help) { out << kUsage; return 0; }
         if (cl.benchRays) { runRayBenchmark(out, cl.opt.seed, cl.benchN, cl.benchM, cl.benchReps); return 0; }
         if (!cl.failureLogs.empty()) return printFailureTable(cl.failureLogs, out, err);
-        if (!cl.compareA.empty()) {
+        if (!cl.pfmA.empty()) {
             Image a, b;
-            if (!readPFM(cl.compareA, a) || !readPFM(cl.compareB, b) || a.width != b.width || a.height != b.height) {
-                err << "bdpt: cannot " << (cl.average ? "average " : "compare ") << cl.compareA << " and " << cl.compareB
+            if (!readPFM(cl.pfmA, a) || !readPFM(cl.pfmB, b) || a.width != b.width || a.height != b.height) {
+                err << "bdpt: cannot " << (cl.average ? "average " : "compare ") << cl.pfmA << " and " << cl.pfmB
                     << " (two PFMs of one size)\n";
                 return 2;
             }
