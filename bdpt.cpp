@@ -537,6 +537,10 @@ inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
                 }
                 continue;
             }
+            if (anyHit) {  // any occluder will do: no order to keep
+                stack[top++] = {n.child[i], tEntry[i]};
+                continue;
+            }
             // Insert so that the nearest child ends on top of the stack (front to back).
             int j = top++;
             while (j > base && stack[j - 1].t < tEntry[i]) { stack[j] = stack[j - 1]; --j; }
@@ -627,7 +631,8 @@ inline float fresnelDielectric(float cosI, float eta) {
 inline Vec3 facingShadingNormal(const SurfacePoint& sp, Vec3 wo) { return dot(wo, sp.ng) >= 0 ? sp.ns : -sp.ns; }
 
 inline float adjointCorrection(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode) {
-    if (mode == Transport::Radiance || !scene.adjointCorrection) return 1;
+    if (mode == Transport::Radiance || !scene.adjointCorrection || (sp.ns.x == sp.ng.x && sp.ns.y == sp.ng.y && sp.ns.z == sp.ng.z))
+        return 1;  // the last: no bump, the factor is 1 exactly
     float denom = absDot(wo, sp.ng) * absDot(wi, sp.ns);
     return denom == 0 ? 0 : absDot(wo, sp.ns) * absDot(wi, sp.ng) / denom;
 }
@@ -636,29 +641,39 @@ inline float adjointCorrection(const Scene& scene, const SurfacePoint& sp, Vec3 
 // A reflection needs wo and wi on one side of the geometric surface (no light leaks) and both
 // above the shading normal: the shading BSDF is then symmetric, and its adjoint differs only by
 // the correction factor, so radiance and importance transport agree on where it vanishes.
-inline Vec3 evalBsdfCos(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode) {
+// One call gives what a connection needs at a vertex (as SmallVCM's BSDF::Evaluate): f |cos wi|
+// and, in pdf and pdfReverse, the solid-angle densities of sampling wi from wo and wo from wi.
+inline Vec3 evalBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode, float& pdf, float& pdfReverse) {
+    pdf = pdfReverse = 0;
     const Material& m = scene.materials[scene.shapes[sp.shape].material];
     if (isSpecular(m) || dot(wo, sp.ng) * dot(wi, sp.ng) <= 0) return Vec3(0);  // no light leaks
     Vec3 n = facingShadingNormal(sp, wo);
-    float cosI = dot(wi, n);
-    if (cosI <= 0 || dot(wo, n) <= 0) return Vec3(0);
-    float f = 1 / kPi;  // Lambert: f = rho/pi
-    if (m.type == Material::Glossy) {  // normalized Phong: f = rho (n+2)/(2 pi) cos^n(alpha)
-        float cosA = dot(wi, reflect(wo, n));
-        f = cosA <= 0 ? 0 : (m.exponent + 2) / (2 * kPi) * std::pow(cosA, m.exponent);
+    float cosI = dot(wi, n), cosO = dot(wo, n);
+    if (cosI <= 0 || cosO <= 0) return Vec3(0);
+    float f = 1 / kPi;  // Lambert: f = rho/pi, sampled with density cos/pi
+    if (m.type == Material::Diffuse) {
+        pdf = cosI / kPi;
+        pdfReverse = cosO / kPi;
+    } else {  // normalized Phong: f = rho (n+2)/(2 pi) cos^n(alpha), density (n+1)/(2 pi) cos^n(alpha)
+        float cosA = dot(wi, reflect(wo, n));  // = dot(wo, reflect(wi, n)): the lobe is symmetric
+        if (cosA <= 0) return Vec3(0);
+        float lobe = std::pow(cosA, m.exponent);
+        f = (m.exponent + 2) / (2 * kPi) * lobe;
+        pdf = pdfReverse = (m.exponent + 1) / (2 * kPi) * lobe;
     }
     return m.albedo * (f * cosI * adjointCorrection(scene, sp, wo, wi, mode));
 }
 
+inline Vec3 evalBsdfCos(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode) {
+    float pdf, pdfReverse;
+    return evalBsdf(scene, sp, wo, wi, mode, pdf, pdfReverse);
+}
+
 // Solid-angle density with which sampleBsdf picks wi given wo (0 for delta lobes).
 inline float pdfBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi) {
-    const Material& m = scene.materials[scene.shapes[sp.shape].material];
-    if (isSpecular(m) || dot(wo, sp.ng) * dot(wi, sp.ng) <= 0) return 0;
-    Vec3 n = facingShadingNormal(sp, wo);
-    if (dot(wo, n) <= 0) return 0;
-    if (m.type == Material::Diffuse) return std::max(0.0f, dot(wi, n)) / kPi;
-    float cosA = dot(wi, reflect(wo, n));
-    return cosA <= 0 ? 0 : (m.exponent + 1) / (2 * kPi) * std::pow(cosA, m.exponent);
+    float pdf, pdfReverse;
+    evalBsdf(scene, sp, wo, wi, Transport::Radiance, pdf, pdfReverse);
+    return pdf;
 }
 
 inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Transport mode, Rng& rng, BsdfSample& bs) {
@@ -671,9 +686,10 @@ inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Tran
         Vec3 axis = m.type == Material::Diffuse ? n : reflect(wo, n);
         Vec3 local = m.type == Material::Diffuse ? sampleCosineHemisphere(u1, u2) : samplePowerCosine(u1, u2, m.exponent);
         bs.wi = Frame(axis).toWorld(local);
-        bs.pdf = pdfBsdf(scene, sp, wo, bs.wi);
+        float pdfReverse;
+        Vec3 f = evalBsdf(scene, sp, wo, bs.wi, mode, bs.pdf, pdfReverse);
         if (bs.pdf <= 0) return false;  // below the surface: the path ends (the energy is lost)
-        bs.weight = evalBsdfCos(scene, sp, wo, bs.wi, mode) / bs.pdf;
+        bs.weight = f / bs.pdf;
         return !isBlack(bs.weight);
     }
     if (m.type == Material::Mirror) {
@@ -1160,10 +1176,11 @@ inline Vec3 estimateDirect(const Scene& scene, const SurfacePoint& sp, Vec3 wo, 
     Vec3 wi = d / std::sqrt(dist2);
     float cosLight = lp.deltaPosition ? 1 : dot(-wi, lp.n);
     if (cosLight <= 0) return Vec3(0);  // the back of a one-sided emitter
-    Vec3 f = evalBsdfCos(scene, sp, wo, wi, Transport::Radiance);
+    float pdfBsdf, pdfReverse;
+    Vec3 f = evalBsdf(scene, sp, wo, wi, Transport::Radiance, pdfBsdf, pdfReverse);
     if (isBlack(f) || occluded(scene, shadowRay(sp.p, sp.ng, lp.p, lp.n))) return Vec3(0);
     Vec3 contribution = f * lp.emission * (cosLight / (dist2 * lp.pdfArea));
-    if (mis && !lp.deltaPosition) contribution *= powerHeuristic(lp.pdfArea * dist2 / cosLight, pdfBsdf(scene, sp, wo, wi));
+    if (mis && !lp.deltaPosition) contribution *= powerHeuristic(lp.pdfArea * dist2 / cosLight, pdfBsdf);
     return contribution;
 }
 
@@ -1246,6 +1263,7 @@ struct PathVertex {
     bool delta = false;          // a delta BSDF was sampled here
     bool deltaPosition = false;  // the pinhole, a point light
     int light = -1;              // the light y_0 was sampled on
+    float misSum = 0;            // bdpt: the MIS walk's sum beyond this vertex (cacheMisSums)
 };
 
 // The cosine a density picks up at a vertex hit from direction w: |cos| on surfaces and area
@@ -1260,24 +1278,20 @@ inline float pdfEmissionDirection(const PathVertex& light, Vec3 w) {
     return std::max(0.0f, dot(light.sp.ng, w)) / kPi;
 }
 
-// The solid-angle density with which `cur`, reached from direction wo, samples direction w.
-inline float pdfDirection(const Scene& scene, const PathVertex& cur, Vec3 wo, Vec3 w) {
-    if (cur.type == PathVertex::Camera) return pdfCameraDirection(scene.camera, w);
-    if (cur.type == PathVertex::Light) return pdfEmissionDirection(cur, w);
-    return pdfBsdf(scene, cur.sp, wo, w);
+// A vertex v looking along the unit direction w (away from v): the factor it multiplies into a
+// connection, its cosine included (section 4; 1 at the pinhole, whose W is connectToCamera's),
+// and two solid-angle densities: of sampling w having arrived along v.wo (pdf), and of sampling
+// v.wo having arrived along w (pdfReverse; surfaces only). MIS needs both at each end.
+inline Vec3 evalVertex(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
+    pdfReverse = 0;
+    if (v.type == PathVertex::Camera) return (pdf = pdfCameraDirection(scene.camera, w)), Vec3(1);
+    if (v.type == PathVertex::Light) return (pdf = pdfEmissionDirection(v, w)), Vec3(v.deltaPosition ? 1 : std::max(0.0f, dot(v.sp.ng, w)));
+    return evalBsdf(scene, v.sp, v.wo, w, mode, pdf, pdfReverse);
 }
 
-// The same as an area density at the vertex `next`, a distance^2 away along w:
+// A solid-angle density as an area density at the vertex `next`, a distance^2 away along w:
 // p_A = p_omega |cos_next| / d^2.
-inline float pdfNext(const Scene& scene, const PathVertex& cur, Vec3 wo, Vec3 w, const PathVertex& next, float dist2) {
-    return pdfDirection(scene, cur, wo, w) * cosAt(next, w) / dist2;
-}
-
-// What a vertex multiplies into a connection toward w, its cosine included (section 4).
-inline Vec3 scatterTowards(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode) {
-    if (v.type == PathVertex::Light) return Vec3(v.deltaPosition ? 1 : std::max(0.0f, dot(v.sp.ng, w)));
-    return evalBsdfCos(scene, v.sp, v.wo, w, mode);
-}
+inline float toArea(float pdfOmega, const PathVertex& next, Vec3 w, float dist2) { return pdfOmega * cosAt(next, w) / dist2; }
 
 // Extends a subpath by BSDF sampling. Each new vertex x_i gets pdfFwd, and x_{i-2} its pdfRev,
 // both evaluated on the vertices' positions (not on the sampled direction, which leaves from an
@@ -1297,8 +1311,12 @@ inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Ve
         v.prevDist2 = dot(d, d);
         if (!(v.prevDist2 > 0)) return;
         v.wo = d / std::sqrt(v.prevDist2);
-        v.pdfFwd = prev.delta ? 0 : pdfNext(scene, prev, prev.wo, -v.wo, v, v.prevDist2);
-        if (i >= 2) path[i - 2].pdfRev = prev.delta ? 0 : pdfNext(scene, prev, -v.wo, prev.wo, path[i - 2], prev.prevDist2);
+        if (!prev.delta) {  // after a delta event both stay 0
+            float pdf, pdfReverse;
+            evalVertex(scene, prev, -v.wo, mode, pdf, pdfReverse);
+            v.pdfFwd = toArea(pdf, v, v.wo, v.prevDist2);
+            if (i >= 2) path[i - 2].pdfRev = toArea(pdfReverse, path[i - 2], prev.wo, prev.prevDist2);
+        }
         path.push_back(v);
         if (bounces + 1 == maxSurfaceVertices) return;
         BsdfSample bs;
@@ -1352,17 +1370,31 @@ inline Vec3 connectToPinhole(const Scene& scene, const PathVertex& y, int& pixel
     CameraConnection c = connectToCamera(scene, y.sp.p, y.sp.ng);
     pixel = c.pixel;
     if (c.pixel < 0) return Vec3(0);
-    return y.beta * scatterTowards(scene, y, c.toCamera, Transport::Importance) * c.importance;
+    float pdf, pdfReverse;
+    return y.beta * evalVertex(scene, y, c.toCamera, Transport::Importance, pdf, pdfReverse) * c.importance;
+}
+
+// The segment from a light-side vertex y to a camera-side vertex x, both ends evaluated toward
+// each other by evalVertex (the camera side is skipped when y already contributes nothing).
+struct Connection {
+    Vec3 w;           // unit, from y to x
+    float dist2 = 0;
+    Vec3 fy, fx;
+    float pdfY = 0, pdfYReverse = 0, pdfX = 0, pdfXReverse = 0;
+};
+
+inline void evalConnection(const Scene& scene, const PathVertex& y, const PathVertex& x, Connection& c) {
+    Vec3 d = x.sp.p - y.sp.p;
+    c.dist2 = dot(d, d);
+    if (!(c.dist2 > 0)) return;
+    c.w = d / std::sqrt(c.dist2);
+    c.fy = evalVertex(scene, y, c.w, Transport::Importance, c.pdfY, c.pdfYReverse);
+    if (!isBlack(c.fy)) c.fx = evalVertex(scene, x, -c.w, Transport::Radiance, c.pdfX, c.pdfXReverse);
 }
 
 // Light-side vertex y joined to camera-side vertex x, before the visibility test.
-inline Vec3 connectVertices(const Scene& scene, const PathVertex& y, const PathVertex& x) {
-    Vec3 d = x.sp.p - y.sp.p;
-    float dist2 = dot(d, d);
-    if (!(dist2 > 0)) return Vec3(0);
-    Vec3 w = d / std::sqrt(dist2);  // from the light side to the camera side
-    return y.beta * scatterTowards(scene, y, w, Transport::Importance) * scatterTowards(scene, x, -w, Transport::Radiance) *
-           x.beta / dist2;
+inline Vec3 connectVertices(const PathVertex& y, const PathVertex& x, const Connection& c) {
+    return c.dist2 > 0 ? y.beta * c.fy * c.fx * x.beta / c.dist2 : Vec3(0);
 }
 
 inline bool mutuallyVisible(const Scene& scene, const PathVertex& a, const PathVertex& b) {
@@ -1417,13 +1449,12 @@ inline Vec3 gatherVpls(const Scene& scene, const RenderOptions& opt, const std::
     Vec3 sum(0);
     for (const Vpl& v : vpls) {
         if (v.bounces + cameraBounces + 1 > opt.maxDepth) continue;
-        Vec3 c = connectVertices(scene, v.y, x);
+        Connection k;
+        evalConnection(scene, v.y, x, k);
+        Vec3 c = connectVertices(v.y, x, k);
         if (isBlack(c) || !mutuallyVisible(scene, v.y, x)) continue;
         if (opt.clamp > 0) {
-            Vec3 d = x.sp.p - v.y.sp.p;
-            float dist2 = dot(d, d);
-            Vec3 w = d / std::sqrt(dist2);
-            float G = absDot(w, x.sp.ng) * cosAt(v.y, w) / dist2;
+            float G = absDot(k.w, x.sp.ng) * cosAt(v.y, k.w) / k.dist2;
             double before = average(c);
             if (G > opt.clamp) c *= opt.clamp / G;
             out.energyUnclamped += before;
@@ -1471,8 +1502,11 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 //     balance w_s = 1/(1 + sum r_i)   power w_s = 1/(1 + sum r_i^2)   (Veach ch. 9)
 //     max     w_s = 1 if no r_i > 1   (the slides' "choose p_X(pi) maximum"; ties, to 1e-4, share)
 //     uniform w_s = 1/(1 + #{r_i > 0})   (every strategy able to make the path, equally)
-// We chose the ratio walk over SmallVCM's recursive quantities: each factor is a density one can
-// point at on the slide, and one walk serves all four heuristics.
+// We chose the ratio walk (each factor is a density one can point at on the slide, and one walk
+// serves all four heuristics), with SmallVCM's one saving: beyond the two vertices next to the
+// connection the walk is the same for every connection, so each subpath sums it once per vertex,
+//     misSum_i = ratio_i^e ([strategy i able] + misSum_{i-1}),  e = 1 balance, 2 power, 0 uniform,
+// and a weight costs O(1) instead of O(k). The max heuristic, whose ties need every r_i, walks on.
 // Delta events (mirror, glass, point light) get density 0, read as 1 in the ratios (the same delta
 // appears in every strategy's density), and a strategy that would have to connect at a delta
 // vertex or hit a point light is skipped: its density is 0 (pitfall 4).
@@ -1480,83 +1514,104 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 // for every path, so the sum stays unbiased (SmallVCM folds them in, which is nearer optimal).
 enum class Heuristic { Balance, Power, Max, Uniform };
 
-// w_{s,t} for the path that strategy (s,t) made from light[0..s-1] and camera[0..t-1]. The
-// connection changes the reverse densities of the (up to) four vertices next to it: those are
-// computed here and override the stored ones during the walk.
+// A connection at vertex i is possible if neither i nor the vertex before it is a delta event: a
+// camera path never starts at i = 0 (no t = 0 strategy), a light path there unless from a point.
+inline bool strategyAble(const std::vector<PathVertex>& path, int i) {
+    if (i == 0) return path[0].type == PathVertex::Light && !path[0].deltaPosition;
+    return !path[i].delta && !path[i - 1].delta;
+}
+
+inline float misPower(Heuristic heuristic, float r) {  // what each r_i adds to the sum
+    return heuristic == Heuristic::Power ? r * r : heuristic == Heuristic::Uniform ? 1.0f : r;
+}
+
+inline float remap0(float pdf) { return pdf != 0 ? pdf : 1.0f; }  // a delta event's 0 reads as 1
+
+// misSum_i of every vertex of a finished subpath (its pdfRev all known).
+inline void cacheMisSums(Heuristic heuristic, std::vector<PathVertex>& path) {
+    float below = 0;
+    for (size_t i = 0; i < path.size(); ++i) {
+        PathVertex& v = path[i];
+        v.misSum = misPower(heuristic, remap0(v.pdfRev) / remap0(v.pdfFwd)) * (strategyAble(path, int(i)) + below);
+        below = v.misSum;
+    }
+}
+
+// w_{s,t} for the path that strategy (s,t) made from light[0..s-1] and camera[0..t-1], joined by
+// the connection c (unused for s = 0), after cacheMisSums on both subpaths. The connection
+// changes the reverse densities of the (up to) four vertices next to it: those are computed
+// here and override the stored ones during the walk.
 // The light seen directly (k = 1) is left to s = 0, as in pbrt: (1,1) gets weight 0, so a point
 // light stays invisible to the camera in bdpt as in pt and nee (lt shows it as one bright pixel).
 inline float misWeight(const Scene& scene, const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
-                       int t, Heuristic heuristic) {
+                       int t, Heuristic heuristic, const Connection& c) {
     if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
     const PathVertex *qs = s > 0 ? &light[s - 1] : nullptr, *pt = &camera[t - 1];
     const PathVertex *qsMinus = s > 1 ? &light[s - 2] : nullptr, *ptMinus = t > 1 ? &camera[t - 2] : nullptr;
     float ptRev = 0, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
     if (s > 0) {
-        Vec3 d = pt->sp.p - qs->sp.p;  // the connection, from the light side to the camera side
-        float dist2 = dot(d, d);
-        Vec3 w = d / std::sqrt(dist2);
-        ptRev = t > 1 ? pdfNext(scene, *qs, qs->wo, w, *pt, dist2) : 0;  // the pinhole is never sampled (no t = 0)
-        qsRev = pdfNext(scene, *pt, pt->wo, -w, *qs, dist2);
-        if (qsMinus) qsMinusRev = pdfNext(scene, *qs, w, qs->wo, *qsMinus, qs->prevDist2);
-        if (ptMinus) ptMinusRev = pdfNext(scene, *pt, -w, pt->wo, *ptMinus, pt->prevDist2);
+        ptRev = t > 1 ? toArea(c.pdfY, *pt, c.w, c.dist2) : 0;  // the pinhole is never sampled (no t = 0)
+        qsRev = toArea(c.pdfX, *qs, c.w, c.dist2);
+        if (qsMinus) qsMinusRev = toArea(c.pdfYReverse, *qsMinus, qs->wo, qs->prevDist2);
+        if (ptMinus) ptMinusRev = toArea(c.pdfXReverse, *ptMinus, pt->wo, pt->prevDist2);
     } else {  // pt lies on an emitter: how a light path would have started there
         ptRev = pdfLightPoint(scene, pt->sp.shape);
-        if (ptMinus) ptMinusRev = pdfEmissionDirection(*pt, pt->wo) * cosAt(*ptMinus, pt->wo) / pt->prevDist2;
+        if (ptMinus) ptMinusRev = toArea(pdfEmissionDirection(*pt, pt->wo), *ptMinus, pt->wo, pt->prevDist2);
     }
     auto cameraRev = [&](int i) { return i == t - 1 ? ptRev : i == t - 2 ? ptMinusRev : camera[i].pdfRev; };
     auto lightRev = [&](int i) { return i == s - 1 ? qsRev : i == s - 2 ? qsMinusRev : light[i].pdfRev; };
     // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
     auto cameraDelta = [&](int i) { return i != t - 1 && camera[i].delta; };
     auto lightDelta = [&](int i) { return i != s - 1 && light[i].delta; };
-    auto remap0 = [](float f) { return f != 0 ? f : 1.0f; };
+    const bool cached = heuristic != Heuristic::Max;
     float sum = 0;
-    int larger = 0, equal = 0, able = 0;
+    int larger = 0, equal = 0;
     // The maximum heuristic needs ties: two strategies of equal density (common in symmetric
     // scenes) computed in different orders can each see the other as larger by a rounding error,
     // and both would get weight 0. Within 1e-4 they count as equal and share the path.
     constexpr float kTie = 1e-4f;
     auto add = [&](float r) {  // r = p_i / p_s of one other strategy i
-        sum += heuristic == Heuristic::Power ? r * r : r;
+        sum += misPower(heuristic, r);
         larger += r > 1 + kTie;
         equal += std::fabs(r - 1) <= kTie;
-        able += r > 0;
     };
     float r = 1;
     for (int i = t - 1; i > 0; --i) {  // more light vertices: strategies (s+1, t-1), ...
+        if (cached && i < t - 2) { sum += misPower(heuristic, r) * camera[i].misSum; break; }
         r *= remap0(cameraRev(i)) / remap0(camera[i].pdfFwd);
         if (!cameraDelta(i) && !cameraDelta(i - 1)) add(r);
     }
     r = 1;
     for (int i = s - 1; i >= 0; --i) {  // more camera vertices: strategies (s-1, t+1), ...
+        if (cached && i < s - 2) { sum += misPower(heuristic, r) * light[i].misSum; break; }
         r *= remap0(lightRev(i)) / remap0(light[i].pdfFwd);
         bool deltaBefore = i > 0 ? lightDelta(i - 1) : light[0].deltaPosition;
         if (!lightDelta(i) && !deltaBefore) add(r);
     }
-    switch (heuristic) {
-        case Heuristic::Balance:
-        case Heuristic::Power: return 1 / (1 + sum);
-        case Heuristic::Max: return larger ? 0 : 1.0f / (1 + equal);
-        case Heuristic::Uniform: return 1.0f / (1 + able);
-    }
-    return 0;
+    return heuristic != Heuristic::Max ? 1 / (1 + sum) : larger ? 0 : 1.0f / (1 + equal);
 }
 
-// The unweighted contribution of strategy (s,t); for t = 1 also the pixel it lands on.
-// light[0] serves s = 1 as well: y_0 is a point sampled on a light by power and area, exactly
-// next event's light sample, so s = 1 is next-event estimation.
+// The unweighted contribution of strategy (s,t) and, for s > 0, its connection c; for t = 1 also
+// the pixel it lands on. light[0] serves s = 1 as well: y_0 is a point sampled on a light by
+// power and area, exactly next event's light sample, so s = 1 is next-event estimation.
 inline Vec3 connectStrategy(const Scene& scene, const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
-                            int t, int& pixel) {
+                            int t, Connection& c, int& pixel) {
     const PathVertex& pt = camera[t - 1];
     if (s == 0) {  // the camera subpath's last vertex is on an emitter
         if (pt.type != PathVertex::Surface) return Vec3(0);
         return pt.beta * emittedRadiance(scene, pt.sp, pt.wo);
     }
     const PathVertex& qs = light[s - 1];
-    if (!connectable(scene, qs)) return Vec3(0);
-    if (t == 1) return connectToPinhole(scene, qs, pixel);  // light tracing
-    if (!connectable(scene, pt)) return Vec3(0);
-    Vec3 c = connectVertices(scene, qs, pt);
-    return isBlack(c) || !mutuallyVisible(scene, qs, pt) ? Vec3(0) : c;
+    if (!connectable(scene, qs) || (t > 1 && !connectable(scene, pt))) return Vec3(0);
+    evalConnection(scene, qs, pt, c);
+    if (isBlack(c.fy)) return Vec3(0);
+    if (t == 1) {  // light tracing
+        CameraConnection cc = connectToCamera(scene, qs.sp.p, qs.sp.ng);
+        pixel = cc.pixel;
+        return cc.pixel < 0 ? Vec3(0) : qs.beta * c.fy * cc.importance;
+    }
+    Vec3 contribution = connectVertices(qs, pt, c);
+    return isBlack(contribution) || !mutuallyVisible(scene, qs, pt) ? Vec3(0) : contribution;
 }
 
 // Per-strategy images (--strategies): strategy (s,t) with path length k = s+t-1 <= maxLength.
@@ -1570,6 +1625,8 @@ inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, in
     float filmX = x + rng.uniform(), filmY = y + rng.uniform();  // in this order: arguments are unsequenced
     cameraSubpath(scene, opt, filmX, filmY, rng, camera);
     lightSubpath(scene, opt, rng, light);
+    cacheMisSums(opt.heuristic, camera);
+    cacheMisSums(opt.heuristic, light);
     Vec3 L(0);
     int here = y * scene.camera.width + x;
     for (int t = 1; t <= int(camera.size()); ++t)
@@ -1579,9 +1636,10 @@ inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, in
             bool record = opt.strategyMaxLength > 0 && s + t - 1 <= opt.strategyMaxLength;
             if (s == 1 && t == 1 && !record) continue;  // weight 0 (misWeight): spare its shadow ray
             int pixel = here;
-            Vec3 c = connectStrategy(scene, light, s, camera, t, pixel);
+            Connection connection;
+            Vec3 c = connectStrategy(scene, light, s, camera, t, connection, pixel);
             if (isBlack(c)) continue;
-            float w = misWeight(scene, light, s, camera, t, opt.heuristic);
+            float w = misWeight(scene, light, s, camera, t, opt.heuristic, connection);
             if (t == 1) out.splats.push_back({pixel, c * w});
             else L += c * w;
             if (record) {

@@ -16,7 +16,15 @@ static std::vector<PathVertex> joinPath(const std::vector<PathVertex>& light, in
     return x;
 }
 
-static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s, std::vector<PathVertex>& y, std::vector<PathVertex>& z) {
+// The solid-angle density with which `cur`, reached from direction wo, samples direction w.
+static float pdfDirection(const Scene& scene, const PathVertex& cur, Vec3 wo, Vec3 w) {
+    if (cur.type == PathVertex::Camera) return pdfCameraDirection(scene.camera, w);
+    if (cur.type == PathVertex::Light) return pdfEmissionDirection(cur, w);
+    return pdfBsdf(scene, cur.sp, wo, w);
+}
+
+static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s, Heuristic h, std::vector<PathVertex>& y,
+                    std::vector<PathVertex>& z) {
     const int n = int(x.size()), t = n - s;
     y.assign(x.begin(), x.begin() + s);
     z.clear();
@@ -37,8 +45,8 @@ static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s,
     for (int i = 0; i < s; ++i) {
         PathVertex& v = y[i];
         if (i == 0) v.pdfFwd = v.deltaPosition ? lightChoiceProbability(scene, v.light) : pdfLightPoint(scene, v.sp.shape);
-        else v.pdfFwd = y[i - 1].delta ? 0 : pdfNext(scene, y[i - 1], y[i - 1].wo, -v.wo, v, v.prevDist2);
-        v.pdfRev = i + 2 < s ? (y[i + 1].delta ? 0 : pdfNext(scene, y[i + 1], -y[i + 2].wo, y[i + 1].wo, v, y[i + 1].prevDist2)) : 0;
+        else v.pdfFwd = y[i - 1].delta ? 0 : toArea(pdfDirection(scene, y[i - 1], y[i - 1].wo, -v.wo), v, v.wo, v.prevDist2);
+        v.pdfRev = i + 2 < s ? (y[i + 1].delta ? 0 : toArea(pdfDirection(scene, y[i + 1], -y[i + 2].wo, y[i + 1].wo), v, y[i + 1].wo, y[i + 1].prevDist2)) : 0;
     }
     for (int j = 0; j < t; ++j) {  // camera subpath, z_0 the pinhole
         PathVertex& v = z[j];
@@ -53,9 +61,11 @@ static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s,
     }
     for (int j = 0; j < t; ++j) {
         PathVertex& v = z[j];
-        v.pdfFwd = j == 0 ? 1 : z[j - 1].delta ? 0 : pdfNext(scene, z[j - 1], z[j - 1].wo, -v.wo, v, v.prevDist2);
-        v.pdfRev = j + 2 < t ? (z[j + 1].delta ? 0 : pdfNext(scene, z[j + 1], -z[j + 2].wo, z[j + 1].wo, v, z[j + 1].prevDist2)) : 0;
+        v.pdfFwd = j == 0 ? 1 : z[j - 1].delta ? 0 : toArea(pdfDirection(scene, z[j - 1], z[j - 1].wo, -v.wo), v, v.wo, v.prevDist2);
+        v.pdfRev = j + 2 < t ? (z[j + 1].delta ? 0 : toArea(pdfDirection(scene, z[j + 1], -z[j + 2].wo, z[j + 1].wo), v, z[j + 1].wo, z[j + 1].prevDist2)) : 0;
     }
+    cacheMisSums(h, y);
+    cacheMisSums(h, z);
 }
 
 // Can strategy (s, n-s) make this path at all? s = 0 needs x_0 on an area light; a connection
@@ -80,20 +90,26 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
         Rng rng = makeRng(seed, uint64_t(i), 7);
         cameraSubpath(scene, opt, rng.uniform() * scene.camera.width, rng.uniform() * scene.camera.height, rng, camera);
         lightSubpath(scene, opt, rng, light);
+        cacheMisSums(h, camera);
+        cacheMisSums(h, light);
         for (int t = 1; t <= int(camera.size()); ++t)
             for (int s = 0; s <= int(light.size()); ++s) {
                 if (s + t < 3 || s + t - 2 > opt.maxDepth) continue;  // k >= 2: more than one strategy
                 int pixel = 0;
-                if (isBlack(connectStrategy(scene, light, s, camera, t, pixel))) continue;
+                Connection connection;
+                if (isBlack(connectStrategy(scene, light, s, camera, t, connection, pixel))) continue;
                 std::vector<PathVertex> x = joinPath(light, s, camera, t);
                 double sum = 0;
                 for (int s2 = 0; s2 < int(x.size()); ++s2) {
                     if (!able(scene, x, s2)) continue;
-                    rebuild(scene, x, s2, y, z);
-                    float w = misWeight(scene, y, s2, z, int(x.size()) - s2, h);
+                    rebuild(scene, x, s2, h, y, z);
+                    int t2 = int(x.size()) - s2;
+                    Connection c2;  // what connectStrategy would have evaluated for (s2, t2)
+                    if (s2 > 0) evalConnection(scene, y[s2 - 1], z[t2 - 1], c2);
+                    float w = misWeight(scene, y, s2, z, t2, h, c2);
                     sum += w;
                     if (s2 == s) {  // the rebuilt subpaths give the weight the sample got
-                        float w0 = misWeight(scene, light, s, camera, t, h);
+                        float w0 = misWeight(scene, light, s, camera, t, h, connection);
                         wc.worstRebuild = std::max(wc.worstRebuild, double(std::fabs(w - w0)));
                     }
                 }
