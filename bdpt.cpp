@@ -537,10 +537,6 @@ inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
                 }
                 continue;
             }
-            if (anyHit) {  // any occluder will do: no order to keep
-                stack[top++] = {n.child[i], tEntry[i]};
-                continue;
-            }
             // Insert so that the nearest child ends on top of the stack (front to back).
             int j = top++;
             while (j > base && stack[j - 1].t < tEntry[i]) { stack[j] = stack[j - 1]; --j; }
@@ -595,15 +591,15 @@ inline SurfacePoint surfaceAt(const Scene& scene, const Ray& ray, const Hit& hit
 // careful with refraction!"), "Use of shading normals", "Power versus radiance".
 // Every query takes wo, the direction the path arrived from, and wi, the next direction. On a
 // camera path wo points toward the eye and radiance flows wi -> wo; on a light path wo points
-// toward the light and importance flows wi -> wo (light itself flows wo -> wi). evalBsdfCos is
-// the factor a path vertex contributes, cosine included:
+// toward the light and importance flows wi -> wo (light itself flows wo -> wi). evalBsdf gives
+// the factor a path vertex contributes, cosine included (evalBsdfCos: that factor alone):
 //   Radiance:    f(wo,wi) |wi.ns|
 //   Importance:  f(wi,wo) |wi.ns| * |wo.ns||wi.ng| / (|wo.ng||wi.ns|)      (Veach 1997, ch. 5)
 // The second factor is the adjoint of a shading-normal BSDF: the geometry term G(x,y) holds
 // geometric cosines, the shading model replaces one by a shading cosine, and only the radiance
 // side cancels. Unbounded as |wo.ng| -> 0: the slides' "energy generator".
 // G's two cosines therefore live here, one at each end of a segment; connections multiply two
-// evalBsdfCos values (or an emitter/camera cosine) by V/d^2.
+// such factors (or an emitter/camera cosine) by V/d^2.
 // Refraction: radiance crossing into a denser medium is compressed into a smaller solid angle,
 // L_t = (eta_t/eta_i)^2 (1-F) L_i, while power/importance keeps (1-F) only.
 enum class Transport { Radiance, Importance };
