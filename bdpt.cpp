@@ -1280,8 +1280,14 @@ inline float pdfEmissionDirection(const PathVertex& light, Vec3 w) {
 // v.wo having arrived along w (pdfReverse; surfaces only). MIS needs both at each end.
 inline Vec3 evalVertex(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
     pdfReverse = 0;
-    if (v.type == PathVertex::Camera) return (pdf = pdfCameraDirection(scene.camera, w)), Vec3(1);
-    if (v.type == PathVertex::Light) return (pdf = pdfEmissionDirection(v, w)), Vec3(v.deltaPosition ? 1 : std::max(0.0f, dot(v.sp.ng, w)));
+    if (v.type == PathVertex::Camera) {
+        pdf = pdfCameraDirection(scene.camera, w);
+        return Vec3(1);
+    }
+    if (v.type == PathVertex::Light) {
+        pdf = pdfEmissionDirection(v, w);
+        return Vec3(v.deltaPosition ? 1 : std::max(0.0f, dot(v.sp.ng, w)));
+    }
     return evalBsdf(scene, v.sp, v.wo, w, mode, pdf, pdfReverse);
 }
 
