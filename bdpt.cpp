@@ -1607,11 +1607,7 @@ inline Vec3 connectStrategy(const Scene& scene, const std::vector<PathVertex>& l
     if (!connectable(scene, qs) || (t > 1 && !connectable(scene, pt))) return Vec3(0);
     evalConnection(scene, qs, pt, c);
     if (isBlack(c.fy)) return Vec3(0);
-    if (t == 1) {  // light tracing
-        CameraConnection cc = connectToCamera(scene, qs.sp.p, qs.sp.ng);
-        pixel = cc.pixel;
-        return cc.pixel < 0 ? Vec3(0) : qs.beta * c.fy * cc.importance;
-    }
+    if (t == 1) return connectToPinhole(scene, qs, pixel);  // light tracing (c serves the weight)
     Vec3 contribution = connectVertices(qs, pt, c);
     return isBlack(contribution) || !mutuallyVisible(scene, qs, pt) ? Vec3(0) : contribution;
 }
