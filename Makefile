@@ -15,13 +15,19 @@ TESTS := $(patsubst tests/%.cpp,build/%,$(wildcard tests/test_*.cpp))
 
 all: bdpt
 
-bdpt: bdpt.cpp
+# The compile line, rewritten only when it changes: switching NATIVE (or CXXFLAGS) rebuilds.
+build/flags: FORCE
+	@mkdir -p build
+	@echo '$(CXX) $(CXXFLAGS) $(LDLIBS)' | cmp -s - $@ || echo '$(CXX) $(CXXFLAGS) $(LDLIBS)' > $@
+FORCE:
+
+bdpt: bdpt.cpp build/flags
 	$(CXX) $(CXXFLAGS) -o $@ $< $(LDLIBS)
 
 run: bdpt
 	./bdpt scenes/cornell.scene --spp 64 --out cornell.png
 
-build/%: tests/%.cpp bdpt.cpp tests/helpers.h
+build/%: tests/%.cpp bdpt.cpp tests/helpers.h build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
@@ -34,10 +40,10 @@ endef
 
 # The BVH tests once more as built by NATIVE=1 (8-wide AVX nodes where the CPU has AVX), and as
 # on a CPU without SSE (the scalar box test).
-build/native/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h
+build/native/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h build/flags
 	@mkdir -p build/native
 	$(CXX) $(CXXFLAGS) $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
-build/scalar/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h
+build/scalar/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h build/flags
 	@mkdir -p build/scalar
 	$(CXX) $(CXXFLAGS) -U__SSE2__ -U__AVX__ -I. -o $@ $< $(LDLIBS)
 
@@ -79,7 +85,7 @@ fuzz: build/fuzz_scene
 	./build/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 -print_final_stats=1 build/fuzz-corpus
 
 # BVH against Embree (installs libembree-dev for the yardstick in ../shared/perf).
-build/bdpt-native: bdpt.cpp
+build/bdpt-native: bdpt.cpp build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) $(NATIVE_FLAGS) -o $@ $< $(LDLIBS)
 
@@ -89,4 +95,4 @@ bench: bdpt build/bdpt-native
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize fuzz bench refs charts figures clean
+.PHONY: all run test test-sanitize fuzz bench refs charts figures clean FORCE

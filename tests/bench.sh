@@ -25,17 +25,20 @@ done
 echo "== cost per sample, bdpt / nee on scenes/cornell.scene (32 spp, all threads, interleaved $runs times)"
 for i in $(seq "$runs"); do
   for m in nee bdpt; do
-    ./bdpt scenes/cornell.scene --method $m --spp 32 --out "$out/cost.png" | sed -n "s/.* in \([0-9.e+-]*\) s.*/$m \1/p"
+    ./bdpt scenes/cornell.scene --method $m --spp 32 --out "$out/cost.png" |
+      sed -n "s/.* in \([0-9.e+-]*\) s.*, \([0-9.]*\) rays per sample.*/$m \1 \2/p"
   done
 done > "$out/cost.txt"
 python3 - "$out/cost.txt" <<'PY'
 import statistics, sys
-t = {}
+t, rays = {}, {}
 for line in open(sys.argv[1]):
-    m, s = line.split()
+    m, s, r = line.split()
     t.setdefault(m, []).append(float(s))
+    rays[m] = float(r)
 print("nee  seconds:", t["nee"])
 print("bdpt seconds:", t["bdpt"])
+print("rays per sample: nee %.2f, bdpt %.2f (%.2fx)" % (rays["nee"], rays["bdpt"], rays["bdpt"] / rays["nee"]))
 print("median ratio bdpt/nee: %.2fx" % (statistics.median(t["bdpt"]) / statistics.median(t["nee"])))
 PY
 rm -rf "$out"

@@ -100,6 +100,44 @@ TEST_CASE("furnace: L = Le / (1 - a) = 2 within 1% for pt and nee; truncated at 
     }
 }
 
+TEST_CASE("rays are counted per method, and Russian roulette spares the first 3 bounces of every subpath") {
+    // The furnace is closed and every surface is diffuse and emits: no ray escapes, every vertex
+    // samples a light point, so at --maxdepth 1 (camera ray, one bounce) the counts are exact.
+    Scene scene = sceneAt("scenes/furnace.scene", 8, 8);
+    RenderOptions o = quietOptions(Method::PT, 2);
+    o.maxDepth = 1;
+    RenderResult r = render(scene, o);
+    CHECK(r.rays.closest == 256);
+    CHECK(r.rays.shadow == 0);
+    o.method = Method::NEE;  // next event at the first vertex only: the second ends the path
+    r = render(scene, o);
+    CHECK(r.rays.closest == 256);
+    CHECK(r.rays.shadow == 128);
+    CHECK(raysPerSample(r) == "3.00 rays per sample (2.00 closest-hit, 1.00 shadow)");
+    // The shortest paths over many samples: rrStart + 1 surface vertices for nee's camera path
+    // and for both of bdpt's subpaths (which add the pinhole or the light point), so that the
+    // methods compared in `make bench` cut their paths alike.
+    RenderOptions one = quietOptions(Method::NEE, 1);
+    one.threads = 1;
+    Scene pixel = sceneAt("scenes/furnace.scene", 1, 1);
+    long long shortestNee = 1 << 30;
+    size_t shortestCamera = 1 << 30, shortestLight = 1 << 30;
+    std::vector<PathVertex> camera, light;
+    for (uint64_t seed = 1; seed <= 64; ++seed) {
+        one.seed = seed;
+        shortestNee = std::min(shortestNee, render(pixel, one).rays.closest);
+        Rng rng = makeRng(seed, 0, 0);
+        cameraSubpath(pixel, one, 0.5f, 0.5f, rng, camera);
+        lightSubpath(pixel, one, rng, light);
+        shortestCamera = std::min(shortestCamera, camera.size());
+        shortestLight = std::min(shortestLight, light.size());
+    }
+    CHECK(one.rrStart == 3);
+    CHECK(shortestNee == 4);
+    CHECK(shortestCamera == 5);
+    CHECK(shortestLight == 5);
+}
+
 TEST_CASE("pt and nee (with and without MIS) agree on cornell within statistical error") {
     Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
     RegionEstimate pt = renderRegions(scene, quietOptions(Method::PT, 2048, 11), 4);
