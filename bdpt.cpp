@@ -116,9 +116,17 @@ inline Vec3 samplePowerCosine(float u1, float u2, float exponent) {  // pdf = (n
 inline Vec3 reflect(Vec3 w, Vec3 n) { return 2 * dot(w, n) * n - w; }  // mirror w about n
 
 // == 2. Geometry: spheres and parallelograms ===================================================
-// A ray is o + t d with t in (0, tmax). Self-intersection ("acne") is avoided by starting new rays
-// from a point pushed off the surface along the geometric normal, to the side the ray leaves on,
-// by a distance proportional to the coordinates' magnitude (float spacing grows with it).
+// A ray is o + t d with t in (0, tmax). A hit point computed in floats lies off the surface by a
+// rounding error, and a new ray started there may hit its own surface again ("acne"). So every
+// hit point carries a bound on its error, pError per coordinate (pbrt-v3 3.9: a sphere's point
+// is reprojected onto the sphere, a quad's recomputed as q + a u + b v, each a few gamma_n), and
+// a new ray starts from the point pushed off along ng by |ng|.pError, rounded away from the
+// surface: the smallest push that provably clears the surface. Both ends of a shadow ray are
+// pushed the same way, so visibility is the same whichever side a method traces it from.
+// Why not a fixed rule of thumb like 5e-5 (1 + max|p|): it is absolute below |p| = 1 and
+// hundreds of ulps above, so it is far too large for small scenes and thin gaps. A lamp 0.5 mm
+// above a floor (tests/thin-gap.scene, lecture_notes/figures/thin-gap.png) then loses up to 16%
+// of its light in lt against pt, and methods disagree; with the bound all agree (tests).
 struct Ray {
     Vec3 o, d;
     float tmax = kInf;
@@ -183,12 +191,18 @@ inline float intersectShape(const Shape& s, const Ray& r) {
     return s.type == Shape::Sphere ? intersectSphere(s.p, s.radius, r) : intersectQuad(s, r);
 }
 
-// Everything the shading code needs at a hit: position, geometric normal ng (the shape's front
-// side), shading normal ns (equal to ng unless the shape has a bump), and which shape.
+// Everything the shading code needs at a hit: position and its error bound, geometric normal ng
+// (the shape's front side), shading normal ns (equal to ng unless the shape has a bump), and
+// which shape.
 struct SurfacePoint {
     Vec3 p, ng, ns;
+    Vec3 pError;       // |computed p - exact surface point| <= pError, per coordinate
     int shape = -1;
 };
+
+// gamma_n = n u / (1 - n u), u = 2^-24: the relative error of n float operations (Higham).
+constexpr float gammaBound(int n) { return n * 0x1p-24f / (1 - n * 0x1p-24f); }
+inline Vec3 absVec(Vec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
 
 inline Vec3 geometricNormal(const Shape& s, Vec3 p) {
     return s.type == Shape::Sphere ? s.side * normalize(p - s.p) : s.normal;
@@ -203,27 +217,53 @@ inline Vec3 shadingNormal(const Shape& s, Vec3 p, Vec3 ng) {
     return normalize(ng + s.bumpAmplitude * (g - dot(g, ng) * ng));
 }
 
-inline SurfacePoint makeSurfacePoint(const Shape& s, int shapeIndex, Vec3 p) {
+// The point of shape s nearest to p (a hit o + t d, or a sample), with its error bound:
+//   sphere: c + r (p-c)/|p-c|, error gamma_5 |p-c| + gamma_1 |p|  (pbrt's reprojection)
+//   quad:   q + a u + b v with (a,b) of p, error gamma_3 (|q| + |a u| + |b v|); (a,b) may be off,
+//           which moves the point along the surface only.
+// fixedOffset: the deliberate mistake --fixed-ray-offset, the bound replaced by 5e-5 (1 + max|p|).
+inline SurfacePoint makeSurfacePoint(const Shape& s, int shapeIndex, Vec3 p, bool fixedOffset = false) {
     SurfacePoint sp;
-    sp.p = p;
-    sp.ng = geometricNormal(s, p);
-    sp.ns = shadingNormal(s, p, sp.ng);
+    if (s.type == Shape::Sphere) {
+        Vec3 local = p - s.p;
+        local = local * (s.radius / length(local));
+        sp.p = s.p + local;
+        sp.pError = gammaBound(5) * absVec(local) + gammaBound(1) * absVec(sp.p);
+    } else {
+        Vec3 w = quadW(s.u, s.v), rel = p - s.p;
+        float a = std::min(1.0f, std::max(0.0f, dot(w, cross(rel, s.v))));
+        float b = std::min(1.0f, std::max(0.0f, dot(w, cross(s.u, rel))));
+        sp.p = s.p + a * s.u + b * s.v;
+        sp.pError = gammaBound(3) * (absVec(s.p) + absVec(a * s.u) + absVec(b * s.v));
+    }
+    if (fixedOffset) sp.pError = Vec3(5e-5f * (1.0f + maxComponent(absVec(sp.p))));
+    sp.ng = geometricNormal(s, sp.p);
+    sp.ns = shadingNormal(s, sp.p, sp.ng);
     sp.shape = shapeIndex;
     return sp;
 }
 
-inline Vec3 offsetPoint(Vec3 p, Vec3 ng, Vec3 dir) {
-    float scale = 5e-5f * (1.0f + std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z))));
-    return p + (dot(dir, ng) > 0 ? scale : -scale) * ng;
+// p pushed off its surface (normal ng, error pError) to the side of dir: by |ng|.pError along
+// ng, then each coordinate rounded one float further away, so the rounding of the addition
+// cannot bring it back (pbrt-v3 OffsetRayOrigin).
+inline Vec3 offsetRayOrigin(Vec3 p, Vec3 pError, Vec3 ng, Vec3 dir) {
+    float d = dot(absVec(ng), pError);
+    Vec3 offset = (dot(dir, ng) > 0 ? d : -d) * ng, o = p + offset;
+    for (int i = 0; i < 3; ++i)
+        if (offset[i] != 0) o[i] = std::nextafter(o[i], offset[i] > 0 ? kInf : -kInf);
+    return o;
 }
-inline Ray spawnRay(const SurfacePoint& sp, Vec3 dir) { return {offsetPoint(sp.p, sp.ng, dir), dir, kInf}; }
+inline Ray spawnRay(const SurfacePoint& sp, Vec3 dir) { return {offsetRayOrigin(sp.p, sp.pError, sp.ng, dir), dir, kInf}; }
 
 // A shadow ray between two points, each pushed off its own surface toward the other; a point
-// without a surface (point light, pinhole) passes a zero normal.
-inline Ray shadowRay(Vec3 from, Vec3 fromNg, Vec3 to, Vec3 toNg) {
-    Vec3 d = to - from;
-    Vec3 o = isBlack(fromNg) ? from : offsetPoint(from, fromNg, d);
-    Vec3 e = isBlack(toNg) ? to : offsetPoint(to, toNg, -d);
+// without a surface (point light, pinhole) has a zero normal and stays where it is. The pushes
+// clear both surfaces; the far end is also brought 1e-4 of the length closer (pbrt's
+// ShadowEpsilon), since the target's own hit distance is computed with an error that grows
+// with the length, not with the target's coordinates.
+inline Ray shadowRay(const SurfacePoint& from, const SurfacePoint& to) {
+    Vec3 d = to.p - from.p;
+    Vec3 o = isBlack(from.ng) ? from.p : offsetRayOrigin(from.p, from.pError, from.ng, d);
+    Vec3 e = isBlack(to.ng) ? to.p : offsetRayOrigin(to.p, to.pError, to.ng, -d);
     Vec3 oe = e - o;
     float dist = length(oe);
     return {o, oe / dist, dist * (1 - 1e-4f)};
@@ -559,6 +599,7 @@ struct Scene {
     // Deliberate mistakes for the lecture (section 4): each defaults to the physically right rule.
     bool adjointCorrection = true;     // false: --no-adjoint-correction
     bool symmetricRefraction = false;  // true: --symmetric-refraction
+    bool fixedRayOffset = false;       // true: --fixed-ray-offset (section 2)
 };
 
 inline Hit intersectBruteForce(const std::vector<Shape>& shapes, const Ray& ray) {
@@ -592,7 +633,7 @@ inline bool occluded(const Scene& scene, const Ray& ray) {
     return scene.bruteForce ? occludedBruteForce(scene.shapes, ray) : traverseBvh<true>(scene.bvh, ray).found();
 }
 inline SurfacePoint surfaceAt(const Scene& scene, const Ray& ray, const Hit& hit) {
-    return makeSurfacePoint(scene.shapes[hit.shape], hit.shape, ray.o + hit.t * ray.d);
+    return makeSurfacePoint(scene.shapes[hit.shape], hit.shape, ray.o + hit.t * ray.d, scene.fixedRayOffset);
 }
 
 // == 4. Materials: BSDFs, and where transport stops being symmetric ===========================
@@ -754,11 +795,11 @@ inline int chooseLight(const Scene& scene, float u) {
 inline SurfacePoint sampleShapePoint(const Scene& scene, int shapeIndex, float u1, float u2) {
     const Shape& s = scene.shapes[shapeIndex];
     Vec3 p = s.type == Shape::Sphere ? s.p + s.radius * sampleUniformSphere(u1, u2) : s.p + u1 * s.u + u2 * s.v;
-    return makeSurfacePoint(s, shapeIndex, p);
+    return makeSurfacePoint(s, shapeIndex, p, scene.fixedRayOffset);
 }
 
 struct LightPoint {
-    Vec3 p, n;          // n = 0 for a point light
+    SurfacePoint sp;    // a point light: ng = 0 (no surface), shape -1
     Vec3 emission;      // Le for area lights, I for point lights
     float pdfArea = 0;  // P(light) / area; for a point light P(light) (a discrete position)
     bool deltaPosition = false;
@@ -773,15 +814,13 @@ inline LightPoint sampleLightPoint(const Scene& scene, Rng& rng) {
     float choice = lightChoiceProbability(scene, lp.light);
     float u1 = rng.uniform(), u2 = rng.uniform();
     if (light.type == Light::Point) {
-        lp.p = light.position;
+        lp.sp.p = light.position;
         lp.emission = light.intensity;
         lp.pdfArea = choice;
         lp.deltaPosition = true;
         return lp;
     }
-    SurfacePoint sp = sampleShapePoint(scene, light.shape, u1, u2);
-    lp.p = sp.p;
-    lp.n = sp.ng;
+    lp.sp = sampleShapePoint(scene, light.shape, u1, u2);
     lp.emission = scene.shapes[light.shape].emission;
     lp.pdfArea = choice / scene.shapes[light.shape].area;
     return lp;
@@ -812,7 +851,7 @@ inline EmissionSample sampleEmission(const Scene& scene, Rng& rng) {
         return es;
     }
     Vec3 local = sampleCosineHemisphere(u1, u2);
-    es.dir = Frame(es.point.n).toWorld(local);
+    es.dir = Frame(es.point.sp.ng).toWorld(local);
     es.pdfDir = local.z / kPi;
     es.weight = local.z <= 0 ? Vec3(0) : es.point.emission * (local.z / (es.point.pdfArea * es.pdfDir));
     return es;
@@ -827,6 +866,10 @@ inline EmissionSample sampleEmission(const Scene& scene, Rng& rng) {
 // image. Normalized per pixel (area A / (width*height)), W_j = width*height / (A cos^4 theta)
 // inside pixel j: a camera sample then measures the pixel's mean radiance, and a light path
 // connected to the pinhole splats with this W_j (section 8).
+// A uniform film coordinate in pixel x: x + u rounds up to x + 1 for large x and u near 1 (in
+// float, 16383 + 0.99999994 = 16384), which would lie outside the image; keep it below x + 1.
+inline float filmCoordinate(int x, float u) { return std::min(float(x) + u, std::nextafter(float(x + 1), 0.0f)); }
+
 inline Ray cameraRay(const Camera& cam, float filmX, float filmY) {  // film coordinates in pixels
     float x = (2 * filmX / cam.width - 1) * cam.tanHalfFov * cam.aspect;
     float y = (1 - 2 * filmY / cam.height) * cam.tanHalfFov;
@@ -854,10 +897,14 @@ inline float pixelImportance(const Camera& cam, Vec3 dir) {
 // The solid-angle density of the camera's direction sample, normalized per sensor: 1/(A cos^3).
 // BDPT's MIS compares it with light-path densities; with one light path per camera sample the
 // per-pixel factor W*H appears on both sides and cancels (pitfall 1 of light tracing).
+// A direction the camera sampled at the film's border must not read as outside after the round
+// trip through normalize and projection, hence a slack of 1e-5 of the image's half-size.
 inline float pdfCameraDirection(const Camera& cam, Vec3 dir) {
-    float fx, fy;
-    if (!projectToFilm(cam, cam.eye + dir, fx, fy)) return 0;
     float cosT = dot(dir, cam.forward);
+    if (!(cosT > 0)) return 0;
+    float x = dot(dir, cam.right) / (cosT * cam.tanHalfFov * cam.aspect), y = dot(dir, cam.up) / (cosT * cam.tanHalfFov);
+    constexpr float kSlack = 1 + 1e-5f;
+    if (!(std::fabs(x) <= kSlack && std::fabs(y) <= kSlack)) return 0;
     return 1 / (cam.imageArea * cosT * cosT * cosT);
 }
 
@@ -1175,15 +1222,15 @@ inline Vec3 radiancePT(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 // With mis, weighted against the chance that BSDF sampling had found y (power heuristic).
 inline Vec3 estimateDirect(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Rng& rng, bool mis) {
     LightPoint lp = sampleLightPoint(scene, rng);
-    Vec3 d = lp.p - sp.p;
+    Vec3 d = lp.sp.p - sp.p;
     float dist2 = dot(d, d);
     if (!(dist2 > 0)) return Vec3(0);
     Vec3 wi = d / std::sqrt(dist2);
-    float cosLight = lp.deltaPosition ? 1 : dot(-wi, lp.n);
+    float cosLight = lp.deltaPosition ? 1 : dot(-wi, lp.sp.ng);
     if (cosLight <= 0) return Vec3(0);  // the back of a one-sided emitter
     float pdfBsdf, pdfReverse;
     Vec3 f = evalBsdf(scene, sp, wo, wi, Transport::Radiance, pdfBsdf, pdfReverse);
-    if (isBlack(f) || occluded(scene, shadowRay(sp.p, sp.ng, lp.p, lp.n))) return Vec3(0);
+    if (isBlack(f) || occluded(scene, shadowRay(sp, lp.sp))) return Vec3(0);
     Vec3 contribution = f * lp.emission * (cosLight / (dist2 * lp.pdfArea));
     if (mis && !lp.deltaPosition) contribution *= powerHeuristic(lp.pdfArea * dist2 / cosLight, pdfBsdf);
     return contribution;
@@ -1197,6 +1244,7 @@ inline Vec3 radianceNEE(const Scene& scene, const RenderOptions& opt, Ray ray, R
     Vec3 L(0), beta(1);
     bool afterDelta = true;   // the camera counts as a delta vertex
     float pdfPrevBsdf = 0;    // solid-angle density of the BSDF sample that made this ray
+    Vec3 prevP = ray.o;       // the vertex that ray left (not its pushed-off origin)
     for (int bounces = 0;; ++bounces) {
         Hit hit = intersect(scene, ray);
         if (!hit.found()) break;
@@ -1206,8 +1254,9 @@ inline Vec3 radianceNEE(const Scene& scene, const RenderOptions& opt, Ray ray, R
         if (!isBlack(Le)) {
             if (afterDelta) {
                 L += beta * Le;
-            } else if (opt.mis) {
-                float pdfLight = pdfLightPoint(scene, sp.shape) * hit.t * hit.t / dot(wo, sp.ng);
+            } else if (opt.mis) {  // the distance between the vertices, as estimateDirect's weight has it
+                Vec3 d = prevP - sp.p;
+                float dist2 = dot(d, d), pdfLight = pdfLightPoint(scene, sp.shape) * dist2 * std::sqrt(dist2) / dot(d, sp.ng);
                 L += beta * Le * powerHeuristic(pdfPrevBsdf, pdfLight);
             }
         }
@@ -1221,6 +1270,7 @@ inline Vec3 radianceNEE(const Scene& scene, const RenderOptions& opt, Ray ray, R
         beta *= bs.weight;
         if (!russianRoulette(beta, 1, bounces, opt, rng)) break;
         ray = spawnRay(sp, bs.wi);
+        prevP = sp.p;
     }
     return L;
 }
@@ -1235,18 +1285,20 @@ struct CameraConnection {
     float importance = 0;    // W_j cos_cam / (d^2 N_lightpaths)
 };
 
-inline CameraConnection connectToCamera(const Scene& scene, Vec3 p, Vec3 ng) {
+inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& x) {
     CameraConnection c;
     const Camera& cam = scene.camera;
     float fx, fy;
-    if (!projectToFilm(cam, p, fx, fy)) return c;
-    Vec3 d = cam.eye - p;
+    if (!projectToFilm(cam, x.p, fx, fy)) return c;
+    Vec3 d = cam.eye - x.p;
     float dist2 = dot(d, d);
     c.toCamera = d / std::sqrt(dist2);
     float cosCamera = dot(-c.toCamera, cam.forward);
     float lightPathsPerPass = float(cam.width) * cam.height;
     c.importance = pixelImportance(cam, -c.toCamera) * cosCamera / (dist2 * lightPathsPerPass);
-    if (occluded(scene, shadowRay(p, ng, cam.eye, Vec3(0)))) return c;
+    SurfacePoint eye;  // no surface: ng = 0
+    eye.p = cam.eye;
+    if (occluded(scene, shadowRay(x, eye))) return c;
     c.pixel = std::min(int(fy), cam.height - 1) * cam.width + std::min(int(fx), cam.width - 1);
     return c;
 }
@@ -1264,11 +1316,11 @@ struct PathVertex {
     Vec3 wo;                // surface: unit vector toward the previous vertex of its own subpath
     float prevDist2 = 0;    // squared distance to that vertex
     Vec3 beta;              // subpath throughput up to this vertex (light: Le/p_A or I/P(light))
-    float pdfFwd = 0, pdfRev = 0;  // area densities for bdpt's MIS (see its banner below)
+    double pdfFwd = 0, pdfRev = 0; // area densities for bdpt's MIS (see its banner below); a delta: 1
     bool delta = false;          // a delta BSDF was sampled here
     bool deltaPosition = false;  // the pinhole, a point light
     int light = -1;              // the light y_0 was sampled on
-    float misSum = 0;            // bdpt: the MIS walk's sum beyond this vertex (cacheMisSums)
+    double misSum = 0;           // bdpt: the MIS walk's sum beyond this vertex (cacheMisSums)
 };
 
 // The cosine a density picks up at a vertex hit from direction w: |cos| on surfaces and area
@@ -1302,11 +1354,13 @@ inline Vec3 evalVertex(const Scene& scene, const PathVertex& v, Vec3 w, Transpor
 
 // A solid-angle density as an area density at the vertex `next`, a distance^2 away along w:
 // p_A = p_omega |cos_next| / d^2.
-inline float toArea(float pdfOmega, const PathVertex& next, Vec3 w, float dist2) { return pdfOmega * cosAt(next, w) / dist2; }
+inline double toArea(double pdfOmega, const PathVertex& next, Vec3 w, float dist2) { return pdfOmega * cosAt(next, w) / dist2; }
 
 // Extends a subpath by BSDF sampling. Each new vertex x_i gets pdfFwd, and x_{i-2} its pdfRev,
 // both evaluated on the vertices' positions (not on the sampled direction, which leaves from an
 // offset origin), so that every strategy's density of one path is computed on the same geometry.
+// Densities sampled at a delta vertex x_{i-1} are stored as 1: the same delta appears in every
+// strategy's density and cancels, while a density that is numerically 0 stays 0 (impossible).
 inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Vec3 beta, int maxSurfaceVertices,
                        Transport mode, Rng& rng, std::vector<PathVertex>& path) {
     const float start = maxComponent(beta);  // Russian roulette follows the throughput relative to it
@@ -1322,7 +1376,10 @@ inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Ve
         v.prevDist2 = dot(d, d);
         if (!(v.prevDist2 > 0)) return;
         v.wo = d / std::sqrt(v.prevDist2);
-        if (!prev.delta) {  // after a delta event both stay 0
+        if (prev.delta) {
+            v.pdfFwd = 1;
+            if (i >= 2) path[i - 2].pdfRev = 1;
+        } else {
             float pdf, pdfReverse;
             evalVertex(scene, prev, -v.wo, mode, pdf, pdfReverse);
             v.pdfFwd = toArea(pdf, v, v.wo, v.prevDist2);
@@ -1358,16 +1415,14 @@ inline void lightSubpath(const Scene& scene, const RenderOptions& opt, Rng& rng,
     EmissionSample es = sampleEmission(scene, rng);
     PathVertex y0;
     y0.type = PathVertex::Light;
-    y0.sp.p = es.point.p;
-    y0.sp.ng = es.point.n;
-    y0.sp.shape = scene.lights[es.point.light].shape;  // -1 for a point light
+    y0.sp = es.point.sp;
     y0.light = es.point.light;
     y0.beta = es.point.emission / es.point.pdfArea;
     y0.pdfFwd = es.point.pdfArea;
     y0.deltaPosition = es.point.deltaPosition;
     path.push_back(y0);
     if (isBlack(es.weight)) return;
-    Ray ray{es.point.deltaPosition ? es.point.p : offsetPoint(es.point.p, es.point.n, es.dir), es.dir, kInf};
+    Ray ray = es.point.deltaPosition ? Ray{y0.sp.p, es.dir, kInf} : spawnRay(y0.sp, es.dir);
     randomWalk(scene, opt, ray, es.weight, opt.maxDepth, Transport::Importance, rng, path);
 }
 
@@ -1378,7 +1433,7 @@ inline bool connectable(const Scene& scene, const PathVertex& v) {
 
 // A light-side vertex seen through the pinhole (the t = 1 connection); pixel -1 if it is not seen.
 inline Vec3 connectToPinhole(const Scene& scene, const PathVertex& y, int& pixel) {
-    CameraConnection c = connectToCamera(scene, y.sp.p, y.sp.ng);
+    CameraConnection c = connectToCamera(scene, y.sp);
     pixel = c.pixel;
     if (c.pixel < 0) return Vec3(0);
     float pdf, pdfReverse;
@@ -1409,7 +1464,7 @@ inline Vec3 connectVertices(const PathVertex& y, const PathVertex& x, const Conn
 }
 
 inline bool mutuallyVisible(const Scene& scene, const PathVertex& a, const PathVertex& b) {
-    return !occluded(scene, shadowRay(a.sp.p, a.sp.ng, b.sp.p, b.sp.ng));  // ng = 0: no surface to leave
+    return !occluded(scene, shadowRay(a.sp, b.sp));
 }
 
 // -- (c) lt: "next event (light tracing)". Paths start on the lights with p(x,Theta) = Le|cos|/Phi
@@ -1506,10 +1561,12 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 // strategy alone is unbiased for the paths it can make; MIS combines them: C = sum w_ij C_ij.
 //
 // The weights are computed pbrt-style: every vertex stores pdfFwd, the area density with which
-// its own subpath sampled it, and pdfRev, the density with which the other side would have. For
-// the path made by strategy s the density of strategy i differs by a chain of such ratios:
-//     p_{i+1}/p_i = pdfFwd(x_i) / pdfRev(x_i),    walking away from the connection,
-// so r_i = p_i/p_s costs one multiplication per vertex, and a heuristic maps the r_i to w_s:
+// its own subpath sampled it, and pdfRev, the density with which the other side would have. On
+// the path x_0..x_k (x_0 on the light), strategy s samples x_0..x_{s-1} from the light and
+// x_s..x_k from the camera; strategy s+1 differs only in x_s, which changes sides:
+//     p_{s+1}/p_s = pdfRev(x_s) / pdfFwd(x_s),   (x_s's own subpath sampled it with pdfFwd)
+// and likewise p_{s-1}/p_s = pdfRev(x_{s-1}) / pdfFwd(x_{s-1}) on the light side. So
+// r_i = p_i/p_s costs one multiplication per vertex, and a heuristic maps the r_i to w_s:
 //     balance w_s = 1/(1 + sum r_i)   power w_s = 1/(1 + sum r_i^2)   (Veach ch. 9)
 //     max     w_s = 1 if no r_i > 1   (the slides' "choose p_X(pi) maximum"; ties, to 1e-4, share)
 //     uniform w_s = 1/(1 + #{r_i > 0})   (every strategy able to make the path, equally)
@@ -1518,9 +1575,11 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 // connection the walk is the same for every connection, so each subpath sums it once per vertex,
 //     misSum_i = ratio_i^e ([strategy i able] + misSum_{i-1}),  e = 1 balance, 2 power, 0 uniform,
 // and a weight costs O(1) instead of O(k). The max heuristic, whose ties need every r_i, walks on.
-// Delta events (mirror, glass, point light) get density 0, read as 1 in the ratios (the same delta
-// appears in every strategy's density), and a strategy that would have to connect at a delta
-// vertex or hit a point light is skipped: its density is 0 (pitfall 4).
+// Delta events (mirror, glass, point light) are stored as density 1 (the same delta appears in
+// every strategy's density and cancels), and a strategy that would have to connect at a delta
+// vertex or hit a point light is skipped: its density is 0 (pitfall 4). The walk is in double:
+// with sharp lobes near corners one density reaches 1e-31 and another 1e+8, and in float the
+// cached sums overflowed to inf beside ratios that underflowed to 0 (0 x inf = NaN, a lost sample).
 // Russian roulette ends subpaths; the weights leave its probabilities out: they still sum to 1
 // for every path, so the sum stays unbiased (SmallVCM folds them in, which is nearer optimal).
 enum class Heuristic { Balance, Power, Max, Uniform };
@@ -1532,18 +1591,24 @@ inline bool strategyAble(const std::vector<PathVertex>& path, int i) {
     return !path[i].delta && !path[i - 1].delta;
 }
 
-inline float misPower(Heuristic heuristic, float r) {  // what each r_i adds to the sum
-    return heuristic == Heuristic::Power ? r * r : heuristic == Heuristic::Uniform ? 1.0f : r;
+inline double misPower(Heuristic heuristic, double r) {  // what each r_i adds to the sum
+    return heuristic == Heuristic::Power ? r * r : heuristic == Heuristic::Uniform ? 1.0 : r;
 }
 
-inline float remap0(float pdf) { return pdf != 0 ? pdf : 1.0f; }  // a delta event's 0 reads as 1
+// pdfRev/pdfFwd of a vertex changing sides. pdfFwd is > 0 for every vertex a subpath sampled; a 0
+// (a cosine of exactly 0) makes the other strategies' densities 0 relative to it, not infinite.
+inline double densityRatio(double pdfRev, double pdfFwd) { return pdfFwd > 0 ? pdfRev / pdfFwd : 0; }
+
+// r^e times a cached sum: 0 when either is, so that an underflowed ratio never meets an
+// overflowed sum (0 x inf): every strategy beyond a density of 0 shares that factor.
+inline double scaledSum(double rPower, double sum) { return rPower == 0 || sum == 0 ? 0 : rPower * sum; }
 
 // misSum_i of every vertex of a finished subpath (its pdfRev all known).
 inline void cacheMisSums(Heuristic heuristic, std::vector<PathVertex>& path) {
-    float below = 0;
+    double below = 0;
     for (size_t i = 0; i < path.size(); ++i) {
         PathVertex& v = path[i];
-        v.misSum = misPower(heuristic, remap0(v.pdfRev) / remap0(v.pdfFwd)) * (strategyAble(path, int(i)) + below);
+        v.misSum = scaledSum(misPower(heuristic, densityRatio(v.pdfRev, v.pdfFwd)), strategyAble(path, int(i)) + below);
         below = v.misSum;
     }
 }
@@ -1559,7 +1624,7 @@ inline float misWeight(const Scene& scene, const std::vector<PathVertex>& light,
     if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
     const PathVertex *qs = s > 0 ? &light[s - 1] : nullptr, *pt = &camera[t - 1];
     const PathVertex *qsMinus = s > 1 ? &light[s - 2] : nullptr, *ptMinus = t > 1 ? &camera[t - 2] : nullptr;
-    float ptRev = 0, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
+    double ptRev = 0, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
     if (s > 0) {
         ptRev = t > 1 ? toArea(c.pdfY, *pt, c.w, c.dist2) : 0;  // the pinhole is never sampled (no t = 0)
         qsRev = toArea(c.pdfX, *qs, c.w, c.dist2);
@@ -1575,31 +1640,31 @@ inline float misWeight(const Scene& scene, const std::vector<PathVertex>& light,
     auto cameraDelta = [&](int i) { return i != t - 1 && camera[i].delta; };
     auto lightDelta = [&](int i) { return i != s - 1 && light[i].delta; };
     const bool cached = heuristic != Heuristic::Max;
-    float sum = 0;
+    double sum = 0;
     int larger = 0, equal = 0;
     // The maximum heuristic needs ties: two strategies of equal density (common in symmetric
     // scenes) computed in different orders can each see the other as larger by a rounding error,
     // and both would get weight 0. Within 1e-4 they count as equal and share the path.
-    constexpr float kTie = 1e-4f;
-    auto add = [&](float r) {  // r = p_i / p_s of one other strategy i
+    constexpr double kTie = 1e-4;
+    auto add = [&](double r) {  // r = p_i / p_s of one other strategy i
         sum += misPower(heuristic, r);
         larger += r > 1 + kTie;
         equal += std::fabs(r - 1) <= kTie;
     };
-    float r = 1;
+    double r = 1;
     for (int i = t - 1; i > 0; --i) {  // more light vertices: strategies (s+1, t-1), ...
-        if (cached && i < t - 2) { sum += misPower(heuristic, r) * camera[i].misSum; break; }
-        r *= remap0(cameraRev(i)) / remap0(camera[i].pdfFwd);
+        if (cached && i < t - 2) { sum += scaledSum(misPower(heuristic, r), camera[i].misSum); break; }
+        r *= densityRatio(cameraRev(i), camera[i].pdfFwd);
         if (!cameraDelta(i) && !cameraDelta(i - 1)) add(r);
     }
     r = 1;
     for (int i = s - 1; i >= 0; --i) {  // more camera vertices: strategies (s-1, t+1), ...
-        if (cached && i < s - 2) { sum += misPower(heuristic, r) * light[i].misSum; break; }
-        r *= remap0(lightRev(i)) / remap0(light[i].pdfFwd);
+        if (cached && i < s - 2) { sum += scaledSum(misPower(heuristic, r), light[i].misSum); break; }
+        r *= densityRatio(lightRev(i), light[i].pdfFwd);
         bool deltaBefore = i > 0 ? lightDelta(i - 1) : light[0].deltaPosition;
         if (!lightDelta(i) && !deltaBefore) add(r);
     }
-    return heuristic != Heuristic::Max ? 1 / (1 + sum) : larger ? 0 : 1.0f / (1 + equal);
+    return heuristic != Heuristic::Max ? float(1 / (1 + sum)) : larger ? 0 : 1.0f / (1 + equal);
 }
 
 // The unweighted contribution of strategy (s,t) and, for s > 0, its connection c; for t = 1 also
@@ -1629,7 +1694,7 @@ inline int strategyIndex(int s, int t) {  // rows by k, s = 0..k within a row
 
 inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, int y, Rng& rng, RowOutput& out) {
     thread_local std::vector<PathVertex> camera, light;
-    float filmX = x + rng.uniform(), filmY = y + rng.uniform();  // in this order: arguments are unsequenced
+    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
     cameraSubpath(scene, opt, filmX, filmY, rng, camera);
     lightSubpath(scene, opt, rng, light);
     cacheMisSums(opt.heuristic, camera);
@@ -1677,7 +1742,7 @@ inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, const Pass
         case Method::BDPT: return radianceBDPT(scene, opt, x, y, rng, out);
         default: break;
     }
-    float filmX = x + rng.uniform(), filmY = y + rng.uniform();  // in this order: arguments are unsequenced
+    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
     Ray ray = cameraRay(scene.camera, filmX, filmY);
     switch (opt.method) {
         case Method::PT: return radiancePT(scene, opt, ray, rng);
@@ -2291,6 +2356,8 @@ Deliberate mistakes (slides: "Non-symmetric scattering")
   --symmetric-refraction   reuse one BTDF for both transports: eye paths scale refracted
                     radiance like power (no eta^2), light paths scale power like radiance
   --no-adjoint-correction  light paths use the shading-normal BSDF unchanged (not its adjoint)
+  --fixed-ray-offset       push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)
+                    instead of the hit point's error bound (see tests/thin-gap.scene)
 Sampling
   --spp N           N passes of one sample per pixel (default 16)
   --time SECONDS    render passes until SECONDS have passed (replaces --spp)
@@ -2326,7 +2393,7 @@ struct CommandLine {
     std::string scenePath, out = "render.png";
     RenderOptions opt;
     int width = 0, height = 0;
-    bool help = false, benchRays = false, symmetricRefraction = false, noAdjointCorrection = false;
+    bool help = false, benchRays = false, symmetricRefraction = false, noAdjointCorrection = false, fixedRayOffset = false;
     int benchN = 100000, benchReps = 5, strategyLength = 5;
     std::string strategiesDir, refPath, logPath;
     std::vector<std::string> failureLogs;
@@ -2383,6 +2450,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (a == "--clamp") cl.opt.clamp = float(number(i, 1e-30, 1e30));
         else if (a == "--symmetric-refraction") cl.symmetricRefraction = true;
         else if (a == "--no-adjoint-correction") cl.noAdjointCorrection = true;
+        else if (a == "--fixed-ray-offset") cl.fixedRayOffset = true;
         else if (a == "--maxdepth") cl.opt.maxDepth = int(integer(i, 0, 10000));
         else if (a == "--spp") cl.opt.spp = int(integer(i, 1, 1e8));
         else if (a == "--time") cl.opt.seconds = number(i, 1e-3, 1e7);
@@ -2478,6 +2546,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
     scene.symmetricRefraction = cl.symmetricRefraction;
     scene.adjointCorrection = !cl.noAdjointCorrection;
+    scene.fixedRayOffset = cl.fixedRayOffset;
     Image ref;
     if (!cl.refPath.empty()) {
         if (!readPFM(cl.refPath, ref)) { err << cl.refPath << ":0: cannot read reference (a PFM written by bdpt)\n"; return 2; }

@@ -182,6 +182,30 @@ bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
     } | gnuplot
     echo "figure $FIG/six-panels-$kind.png"
   done
+  thingap
+}
+
+# Section 2's figure: the thin gap with the error-bounded ray offset and with the rule of thumb.
+thingap() {
+  local panels="pt|pt, error bound|--method pt
+lt|lt, error bound|--method lt
+ptfixed|pt, --fixed-ray-offset|--method pt --fixed-ray-offset
+ltfixed|lt, --fixed-ray-offset|--method lt --fixed-ray-offset"
+  mkdir -p "$LOGS/fig"
+  {
+    echo 'set terminal pngcairo size 1000,300 font "sans,11"'
+    echo "set output '$FIG/thin-gap.png'"
+    echo "set multiplot layout 1,4 title 'tests/thin-gap.scene: a lamp 0.5 mm above a floor, direct light, 1024 samples per pixel' font ',12'"
+    echo 'unset border; unset tics; unset key; set size ratio -1; set lmargin 0; set rmargin 0; set tmargin 3; set bmargin 0'
+    while IFS='|' read -r name title opts; do
+      # shellcheck disable=SC2086
+      mean=$(./bdpt tests/thin-gap.scene $opts --maxdepth 1 --spp 1024 --out "$LOGS/fig/gap-$name.png" | sed -n 's/.* mean \([0-9.e+-]*\),.*/\1/p')
+      echo "set title '$title: mean $(printf %.3f "$mean")'"
+      echo "plot '$LOGS/fig/gap-$name.png' binary filetype=png with rgbimage"
+    done <<< "$panels"
+    echo 'unset multiplot'
+  } | gnuplot
+  echo "figure $FIG/thin-gap.png"
 }
 
 notes() {  # every command shown in the lecture notes, exactly as shown

@@ -45,8 +45,8 @@ static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s,
     for (int i = 0; i < s; ++i) {
         PathVertex& v = y[i];
         if (i == 0) v.pdfFwd = v.deltaPosition ? lightChoiceProbability(scene, v.light) : pdfLightPoint(scene, v.sp.shape);
-        else v.pdfFwd = y[i - 1].delta ? 0 : toArea(pdfDirection(scene, y[i - 1], y[i - 1].wo, -v.wo), v, v.wo, v.prevDist2);
-        v.pdfRev = i + 2 < s ? (y[i + 1].delta ? 0 : toArea(pdfDirection(scene, y[i + 1], -y[i + 2].wo, y[i + 1].wo), v, y[i + 1].wo, y[i + 1].prevDist2)) : 0;
+        else v.pdfFwd = y[i - 1].delta ? 1 : toArea(pdfDirection(scene, y[i - 1], y[i - 1].wo, -v.wo), v, v.wo, v.prevDist2);
+        v.pdfRev = i + 2 < s ? (y[i + 1].delta ? 1 : toArea(pdfDirection(scene, y[i + 1], -y[i + 2].wo, y[i + 1].wo), v, y[i + 1].wo, y[i + 1].prevDist2)) : 0;
     }
     for (int j = 0; j < t; ++j) {  // camera subpath, z_0 the pinhole
         PathVertex& v = z[j];
@@ -61,8 +61,8 @@ static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s,
     }
     for (int j = 0; j < t; ++j) {
         PathVertex& v = z[j];
-        v.pdfFwd = j == 0 ? 1 : z[j - 1].delta ? 0 : toArea(pdfDirection(scene, z[j - 1], z[j - 1].wo, -v.wo), v, v.wo, v.prevDist2);
-        v.pdfRev = j + 2 < t ? (z[j + 1].delta ? 0 : toArea(pdfDirection(scene, z[j + 1], -z[j + 2].wo, z[j + 1].wo), v, z[j + 1].wo, z[j + 1].prevDist2)) : 0;
+        v.pdfFwd = j == 0 ? 1 : z[j - 1].delta ? 1 : toArea(pdfDirection(scene, z[j - 1], z[j - 1].wo, -v.wo), v, v.wo, v.prevDist2);
+        v.pdfRev = j + 2 < t ? (z[j + 1].delta ? 1 : toArea(pdfDirection(scene, z[j + 1], -z[j + 2].wo, z[j + 1].wo), v, z[j + 1].wo, z[j + 1].prevDist2)) : 0;
     }
     cacheMisSums(h, y);
     cacheMisSums(h, z);
