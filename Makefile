@@ -92,7 +92,21 @@ build/bdpt-native: bdpt.cpp build/flags
 bench: bdpt build/bdpt-native
 	tests/bench.sh
 
+# Error at equal samples and efficiency 1/(MSE x CPU-s) of every method (tests/efficiency.cpp).
+build/efficiency: tests/efficiency.cpp bdpt.cpp build/flags
+	@mkdir -p build
+	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
+
+# The table goes to lecture_notes/figures/efficiency.md and into the README between its markers.
+efficiency: build/efficiency
+	./build/efficiency $(EFFICIENCY_ARGS) > build/efficiency.md.tmp && mv build/efficiency.md.tmp lecture_notes/figures/efficiency.md
+	awk -v table=lecture_notes/figures/efficiency.md ' \
+	  /<!-- efficiency:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next } \
+	  /<!-- efficiency:end -->/ { skip = 0 } \
+	  !skip' README.md > README.md.tmp && mv README.md.tmp README.md
+	cat lecture_notes/figures/efficiency.md
+
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize fuzz bench refs charts figures clean FORCE
+.PHONY: all run test test-sanitize fuzz bench efficiency refs charts figures clean FORCE

@@ -1140,6 +1140,10 @@ inline Scene loadScene(const std::string& path) {
 // two methods shows how they differ. Paths are counted in bounces (scattering vertices): a path
 // of k segments has k-1 bounces, and --maxdepth D keeps paths with at most D bounces.
 enum class Method { PT, NEE, LT, IR, BDPT };
+// How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
+// Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
+// the depth limit. bdpt's banner says which it uses and why.
+enum class Roulette { Throughput, Albedo, Off };
 enum class Heuristic;  // bdpt's MIS heuristics, defined with bdpt below
 
 struct RenderOptions {
@@ -1150,7 +1154,8 @@ struct RenderOptions {
     int threads = 0;           // 0: all cores
     uint64_t seed = 1;
     int maxDepth = 32;         // bounces
-    int rrStart = 3;           // Russian roulette from this many bounces on
+    int rrStart = 3;           // Russian roulette from this many bounces on (Roulette::Throughput)
+    Roulette roulette = Roulette::Albedo;  // how lt, ir and bdpt end their subpaths (pt, nee: Throughput)
     float exposure = 0;        // stops, for the PNG only
     bool quiet = false;
     int vplPaths = 16;         // ir: light paths traced per pass, each leaving VPLs
@@ -1182,8 +1187,9 @@ struct RowOutput {
 
 // Russian roulette ("Path tracing with Russian roulette"): continue with probability q and divide
 // the throughput by q, so E[beta 1(u<q)/q] = beta: the estimator's mean is unchanged, only paths
-// that would contribute little are cut. q follows the throughput relative to the path's start
-// (a light path starts at Phi/p, a camera path at 1), capped below 1 so that every path ends.
+// that would contribute little are cut. For pt and nee (and --roulette throughput) q follows the
+// throughput relative to the path's start (a light path starts at Phi/p, a camera path at 1),
+// capped below 1 so that every path ends; lt, ir and bdpt use the albedo (bdpt's banner: why).
 inline bool russianRoulette(Vec3& beta, float startThroughput, int bounces, const RenderOptions& opt, Rng& rng) {
     if (bounces < opt.rrStart) return true;
     float q = std::min(0.95f, maxComponent(beta) / startThroughput);
@@ -1321,7 +1327,17 @@ struct PathVertex {
     bool deltaPosition = false;  // the pinhole, a point light
     int light = -1;              // the light y_0 was sampled on
     double misSum = 0;           // bdpt: the MIS walk's sum beyond this vertex (cacheMisSums)
+    float continuation = 1;      // Roulette::Albedo: probability that a walk goes on from here
 };
+
+// Roulette::Albedo's continuation probability at a surface: its material's largest albedo
+// (SmallVCM's ContinuationProb). It depends on the vertex alone, not on the direction or on the
+// subpath's throughput, so both walks through the vertex have it, and MIS can count it in
+// pdfFwd and pdfRev alike; a throughput-relative q would depend on the other, unknown, subpath.
+inline float albedoContinuation(const Scene& scene, const SurfacePoint& sp) {
+    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    return m.type == Material::Glass ? 1.0f : std::min(1.0f, maxComponent(m.albedo));
+}
 
 // The cosine a density picks up at a vertex hit from direction w: |cos| on surfaces and area
 // lights, 1 at the pinhole and at point lights (no surface).
@@ -1376,14 +1392,15 @@ inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Ve
         v.prevDist2 = dot(d, d);
         if (!(v.prevDist2 > 0)) return;
         v.wo = d / std::sqrt(v.prevDist2);
+        if (opt.roulette == Roulette::Albedo) v.continuation = albedoContinuation(scene, v.sp);
         if (prev.delta) {
-            v.pdfFwd = 1;
-            if (i >= 2) path[i - 2].pdfRev = 1;
+            v.pdfFwd = prev.continuation;
+            if (i >= 2) path[i - 2].pdfRev = prev.continuation;
         } else {
             float pdf, pdfReverse;
             evalVertex(scene, prev, -v.wo, mode, pdf, pdfReverse);
-            v.pdfFwd = toArea(pdf, v, v.wo, v.prevDist2);
-            if (i >= 2) path[i - 2].pdfRev = toArea(pdfReverse, path[i - 2], prev.wo, prev.prevDist2);
+            v.pdfFwd = toArea(pdf * prev.continuation, v, v.wo, v.prevDist2);
+            if (i >= 2) path[i - 2].pdfRev = toArea(pdfReverse * prev.continuation, path[i - 2], prev.wo, prev.prevDist2);
         }
         path.push_back(v);
         if (bounces + 1 == maxSurfaceVertices) return;
@@ -1391,7 +1408,12 @@ inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Ve
         if (!sampleBsdf(scene, v.sp, v.wo, mode, rng, bs)) return;
         path.back().delta = bs.delta;
         beta *= bs.weight;
-        if (!russianRoulette(beta, start, bounces, opt, rng)) return;  // bounces so far, as in radianceNEE
+        if (opt.roulette == Roulette::Albedo) {
+            if (!(rng.uniform() < v.continuation)) return;
+            beta = beta / v.continuation;
+        } else if (opt.roulette == Roulette::Throughput && !russianRoulette(beta, start, bounces, opt, rng)) {
+            return;  // bounces so far, as in radianceNEE
+        }
         ray = spawnRay(v.sp, bs.wi);
     }
 }
@@ -1410,17 +1432,23 @@ inline void cameraSubpath(const Scene& scene, const RenderOptions& opt, float fi
     randomWalk(scene, opt, ray, Vec3(1), opt.maxDepth + 1, Transport::Radiance, rng, path);
 }
 
+// y_0: a point sampled on a light, its throughput Le/p_A (or I/P(light)) and density p_A.
+inline PathVertex lightVertex(const LightPoint& lp) {
+    PathVertex y0;
+    y0.type = PathVertex::Light;
+    y0.sp = lp.sp;
+    y0.light = lp.light;
+    y0.beta = lp.emission / lp.pdfArea;
+    y0.pdfFwd = lp.pdfArea;
+    y0.deltaPosition = lp.deltaPosition;
+    return y0;
+}
+
 inline void lightSubpath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<PathVertex>& path) {
     path.clear();
     EmissionSample es = sampleEmission(scene, rng);
-    PathVertex y0;
-    y0.type = PathVertex::Light;
-    y0.sp = es.point.sp;
-    y0.light = es.point.light;
-    y0.beta = es.point.emission / es.point.pdfArea;
-    y0.pdfFwd = es.point.pdfArea;
-    y0.deltaPosition = es.point.deltaPosition;
-    path.push_back(y0);
+    path.push_back(lightVertex(es.point));
+    const PathVertex& y0 = path[0];
     if (isBlack(es.weight)) return;
     Ray ray = es.point.deltaPosition ? Ray{y0.sp.p, es.dir, kInf} : spawnRay(y0.sp, es.dir);
     randomWalk(scene, opt, ray, es.weight, opt.maxDepth, Transport::Importance, rng, path);
@@ -1580,8 +1608,21 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 // vertex or hit a point light is skipped: its density is 0 (pitfall 4). The walk is in double:
 // with sharp lobes near corners one density reaches 1e-31 and another 1e+8, and in float the
 // cached sums overflowed to inf beside ratios that underflowed to 0 (0 x inf = NaN, a lost sample).
-// Russian roulette ends subpaths; the weights leave its probabilities out: they still sum to 1
-// for every path, so the sum stays unbiased (SmallVCM folds them in, which is nearer optimal).
+// Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues
+// from a surface vertex with q = the material's albedo (albedoContinuation), so every density
+// sampled there, pdfFwd of the next vertex and pdfRev of the one before, carries that q, and the
+// strategy whose subpath survived more roulette gets less weight. A throughput-relative q (pt's)
+// cannot be counted so: the other subpath's q at a vertex depends on its unknown throughput.
+// Measured by `make efficiency` (64x64, 256 samples, 4 seeds, efficiency against nee --mis):
+//   roulette                   cornell   cornell-glass   indirect   glass-box   (cost/sample)
+//   throughput after 3 (pt's)   0.80x        1.00x          6.94x       1.31x      1
+//   albedo, in the densities    0.90x        1.55x          7.96x       1.96x      0.64-0.71
+//   albedo, not in them         0.89x         ...            ...         ...
+//   none (at most 9 bounces)    0.56x        0.90x          4.64x       1.25x      1.42-1.56
+// so albedo, counted in the densities. On glass-box it does not lower the error at equal
+// samples (MSE 0.99x): half of that error lies in the pixels seeing the two balls, in paths like
+// the floor caustic seen through glass (L S S D S S E), which only s = 0 makes (panel (f)'s SDS
+// limit); even no roulette at all lowers it by a quarter only, at 1.4x the cost.
 enum class Heuristic { Balance, Power, Max, Uniform };
 
 // A connection at vertex i is possible if neither i nor the vertex before it is a delta event: a
@@ -1625,11 +1666,11 @@ inline float misWeight(const Scene& scene, const std::vector<PathVertex>& light,
     const PathVertex *qs = s > 0 ? &light[s - 1] : nullptr, *pt = &camera[t - 1];
     const PathVertex *qsMinus = s > 1 ? &light[s - 2] : nullptr, *ptMinus = t > 1 ? &camera[t - 2] : nullptr;
     double ptRev = 0, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
-    if (s > 0) {
-        ptRev = t > 1 ? toArea(c.pdfY, *pt, c.w, c.dist2) : 0;  // the pinhole is never sampled (no t = 0)
-        qsRev = toArea(c.pdfX, *qs, c.w, c.dist2);
-        if (qsMinus) qsMinusRev = toArea(c.pdfYReverse, *qsMinus, qs->wo, qs->prevDist2);
-        if (ptMinus) ptMinusRev = toArea(c.pdfXReverse, *ptMinus, pt->wo, pt->prevDist2);
+    if (s > 0) {  // each density sampled at a connection vertex carries that vertex's continuation
+        ptRev = t > 1 ? toArea(c.pdfY * qs->continuation, *pt, c.w, c.dist2) : 0;  // the pinhole is never sampled (no t = 0)
+        qsRev = toArea(c.pdfX * pt->continuation, *qs, c.w, c.dist2);
+        if (qsMinus) qsMinusRev = toArea(c.pdfYReverse * qs->continuation, *qsMinus, qs->wo, qs->prevDist2);
+        if (ptMinus) ptMinusRev = toArea(c.pdfXReverse * pt->continuation, *ptMinus, pt->wo, pt->prevDist2);
     } else {  // pt lies on an emitter: how a light path would have started there
         ptRev = pdfLightPoint(scene, pt->sp.shape);
         if (ptMinus) ptMinusRev = toArea(pdfEmissionDirection(*pt, pt->wo), *ptMinus, pt->wo, pt->prevDist2);
@@ -1669,7 +1710,9 @@ inline float misWeight(const Scene& scene, const std::vector<PathVertex>& light,
 
 // The unweighted contribution of strategy (s,t) and, for s > 0, its connection c; for t = 1 also
 // the pixel it lands on. light[0] serves s = 1 as well: y_0 is a point sampled on a light by
-// power and area, exactly next event's light sample, so s = 1 is next-event estimation.
+// power and area, exactly next event's light sample, so s = 1 is next-event estimation. A fresh
+// light point for every camera vertex instead (pbrt, SmallVCM) changed the error by 1.5% at most
+// and cost 5-13% more time (`make efficiency`, the four scenes): one y_0 serves them all.
 inline Vec3 connectStrategy(const Scene& scene, const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
                             int t, Connection& c, int& pixel) {
     const PathVertex& pt = camera[t - 1];
@@ -2352,6 +2395,9 @@ Method
                     unweighted and MIS-weighted, and two pyramid montages, into DIR
   --strategy-length K  longest path (segments) with per-strategy images (default 5)
   --maxdepth D      at most D bounces (scattering vertices) per path (default 32)
+  --roulette R      lt, ir, bdpt: how subpaths end: throughput (q from the throughput after 3
+                    bounces, as pt and nee), albedo (q = the material's albedo at every vertex,
+                    counted in bdpt's MIS densities) or off (only --maxdepth)
 Deliberate mistakes (slides: "Non-symmetric scattering")
   --symmetric-refraction   reuse one BTDF for both transports: eye paths scale refracted
                     radiance like power (no eta^2), light paths scale power like radiance
@@ -2442,6 +2488,12 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             else if (h == "max") cl.opt.heuristic = Heuristic::Max;
             else if (h == "uniform") cl.opt.heuristic = Heuristic::Uniform;
             else fail("unknown heuristic '" + printable(h) + "' (balance, power, max, uniform)");
+        } else if (a == "--roulette") {
+            std::string r = value(i);
+            if (r == "throughput") cl.opt.roulette = Roulette::Throughput;
+            else if (r == "albedo") cl.opt.roulette = Roulette::Albedo;
+            else if (r == "off") cl.opt.roulette = Roulette::Off;
+            else fail("unknown roulette '" + printable(r) + "' (throughput, albedo, off)");
         } else if (a == "--strategies") {
             cl.strategiesDir = value(i);
         } else if (a == "--mis") cl.opt.mis = true;

@@ -70,6 +70,13 @@ inline bool fileExists(const std::string& path) {
     return stat(path.c_str(), &st) == 0;
 }
 
+inline std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
 inline std::string writeTempFile(const std::string& name, const std::string& text) {
     std::string path = "build/tmp_" + name;
     std::ofstream(path, std::ios::binary) << text;

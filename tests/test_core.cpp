@@ -87,20 +87,27 @@ TEST_CASE("Fresnel of a dielectric (eta 1.5): normal, 45 degrees, Brewster, tota
     CHECK(fresnelDielectric(std::cos(42.0f * kPi / 180), 1.5f) == 1.0f);  // beyond 41.81 degrees
 }
 
-TEST_CASE("furnace: L = Le / (1 - a) = 2 within 1% for pt and nee; truncated at D bounces") {
+TEST_CASE("furnace: L = Le / (1 - a) = 2 within 1% for every method; truncated at D bounces") {
     Scene scene = sceneAt("scenes/furnace.scene", 32, 32);
-    for (Method m : {Method::PT, Method::NEE}) {
-        RenderResult r = render(scene, quietOptions(m, 64));
-        CAPTURE(int(m));
+    struct Run { Method m; bool mis; };
+    for (Run run : {Run{Method::PT, false}, Run{Method::NEE, false}, Run{Method::NEE, true}, Run{Method::LT, false},
+                    Run{Method::IR, false}, Run{Method::BDPT, false}}) {
+        RenderOptions o = quietOptions(run.m, 64);
+        o.mis = run.mis;  // nee --mis: a light density without the light's cosine gave 2.19
+        RenderResult r = render(scene, o);
+        CAPTURE(int(run.m));
+        CAPTURE(run.mis);
         CHECK(imageMean(r.image) == doctest::Approx(2.0).epsilon(0.01));
         CHECK(r.nonFinite == 0);
-        RenderOptions o = quietOptions(m, 64);
-        o.maxDepth = 2;  // Le (1 + a + a^2) = 1.75
-        CHECK(imageMean(render(scene, o).image) == doctest::Approx(1.75).epsilon(0.01));
+        for (int depth : {0, 1, 2}) {  // Le (1 + a + ... + a^D): 1, 1.5, 1.75; a path-length limit off by one fails
+            CAPTURE(depth);
+            o.maxDepth = depth;
+            CHECK(imageMean(render(scene, o).image) == doctest::Approx(2 - std::pow(0.5, depth)).epsilon(0.01));
+        }
     }
 }
 
-TEST_CASE("rays are counted per method, and Russian roulette spares the first 3 bounces of every subpath") {
+TEST_CASE("rays are counted per method; Russian roulette: throughput after 3 bounces, or the albedo at every vertex") {
     // The furnace is closed and every surface is diffuse and emits: no ray escapes, every vertex
     // samples a light point, so at --maxdepth 1 (camera ray, one bounce) the counts are exact.
     Scene scene = sceneAt("scenes/furnace.scene", 8, 8);
@@ -115,10 +122,11 @@ TEST_CASE("rays are counted per method, and Russian roulette spares the first 3 
     CHECK(r.rays.shadow == 128);
     CHECK(raysPerSample(r) == "3.00 rays per sample (2.00 closest-hit, 1.00 shadow)");
     // The shortest paths over many samples: rrStart + 1 surface vertices for nee's camera path
-    // and for both of bdpt's subpaths (which add the pinhole or the light point), so that the
-    // methods compared in `make bench` cut their paths alike.
+    // and, under --roulette throughput, for both of bdpt's subpaths (which add the pinhole or
+    // the light point).
     RenderOptions one = quietOptions(Method::NEE, 1);
     one.threads = 1;
+    one.roulette = Roulette::Throughput;
     Scene pixel = sceneAt("scenes/furnace.scene", 1, 1);
     long long shortestNee = 1 << 30;
     size_t shortestCamera = 1 << 30, shortestLight = 1 << 30;
@@ -136,6 +144,23 @@ TEST_CASE("rays are counted per method, and Russian roulette spares the first 3 
     CHECK(shortestNee == 4);
     CHECK(shortestCamera == 5);
     CHECK(shortestLight == 5);
+    // The default for subpaths, --roulette albedo: q = 0.5 (the furnace's albedo) from the first
+    // vertex on, so the number of surface vertices is geometric: half the subpaths have one,
+    // and the mean is 1 / (1 - 0.5) = 2 (the depth limit of 32 is never reached in practice).
+    one.roulette = Roulette::Albedo;
+    const int n = 20000;
+    double single = 0, total = 0;
+    for (int i = 0; i < n; ++i) {
+        Rng rng = makeRng(7, uint64_t(i), 0);
+        cameraSubpath(pixel, one, 0.5f, 0.5f, rng, camera);
+        lightSubpath(pixel, one, rng, light);
+        for (size_t surfaceVertices : {camera.size() - 1, light.size() - 1}) {
+            single += surfaceVertices == 1;
+            total += surfaceVertices;
+        }
+    }
+    CHECK(single / (2 * n) == doctest::Approx(0.5).epsilon(0.03));
+    CHECK(total / (2 * n) == doctest::Approx(2.0).epsilon(0.03));
 }
 
 TEST_CASE("pt and nee (with and without MIS) agree on cornell within statistical error") {
@@ -263,4 +288,22 @@ TEST_CASE("a good run writes both files and reports them") {
     CHECK(img.width == 8);
     CHECK(imageMean(img) == doctest::Approx(2.0).epsilon(0.1));
     CHECK(so.str().find("0 non-finite samples dropped") != std::string::npos);
+}
+
+TEST_CASE("PFM bytes: header, little-endian floats, rows from the bottom up (written by hand here)") {
+    Image img(2, 2);
+    img.at(0, 0) = Vec3(1, 2, 3);      // top row
+    img.at(1, 0) = Vec3(4, 5, 6);
+    img.at(0, 1) = Vec3(0.5f, -1, 0);  // bottom row: written first
+    img.at(1, 1) = Vec3(7, 8, 9);
+    std::string path = "build/tmp_bytes.pfm";
+    REQUIRE(writePFM(img, path));
+    std::string bytes = readFile(path);
+    std::string expected = "PF\n2 2\n-1.0\n";
+    for (float v : {0.5f, -1.0f, 0.0f, 7.0f, 8.0f, 9.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f}) {
+        uint32_t u;
+        std::memcpy(&u, &v, 4);
+        for (int b = 0; b < 4; ++b) expected += char((u >> (8 * b)) & 0xff);  // little-endian by construction
+    }
+    CHECK(bytes == expected);
 }

@@ -4,12 +4,6 @@
 #include <sys/wait.h>
 #include <fcntl.h>
 
-static std::string readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // Runs the command line on a bad scene: status 2, exactly the expected message, no file.
 static void expectRejected(const std::string& scene, const std::string& expected) {

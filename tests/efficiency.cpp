@@ -1,0 +1,143 @@
+// make efficiency: what each method is worth where the slides say bidirectional methods pay off
+// (cornell-glass, glass-box, indirect) and where they should not (cornell's direct light).
+// Every method renders each scene at the references' resolution with the same samples per pixel,
+// on one thread, for several seeds, interleaved (seed by seed, method by method) so that a noisy
+// machine slows them alike. Per run: CPU seconds of the rendering thread and the MSE against
+// scenes/refs/SCENE.pfm, leaving out the lamp seen directly: every pixel within one pixel of a
+// reference value above 5. Its edge pixels are part lamp (Le = 17) and part ceiling, and a camera
+// sample's jitter lands on one or the other: that noise is the pixel filter's, the same for every
+// camera-path method, and on cornell it was 90% of their MSE, hiding the transport's error
+// (light tracing splats some 40 lamp points into each such pixel per pass and does not show it).
+// The table gives medians over the seeds and the efficiency 1/(MSE x CPU-s) relative to nee --mis.
+//   build/efficiency [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT]
+// --alternatives adds the Russian roulette variants (the measurements behind the choice in
+// bdpt's banner); --only keeps the methods whose label contains TEXT (and nee --mis,
+// the baseline).
+#define BDPT_NO_MAIN
+#include "bdpt.cpp"
+
+struct Variant {
+    std::string label;
+    RenderOptions opt;
+};
+
+static RenderOptions with(Method m, void (*change)(RenderOptions&) = nullptr) {
+    RenderOptions o;
+    o.method = m;
+    o.quiet = true;
+    o.threads = 1;
+    if (change) change(o);
+    return o;
+}
+
+static std::vector<Variant> variants(bool alternatives) {
+    std::vector<Variant> v = {
+        {"pt", with(Method::PT)},
+        {"nee", with(Method::NEE)},
+        {"nee --mis", with(Method::NEE, [](RenderOptions& o) { o.mis = true; })},
+        {"lt", with(Method::LT)},
+        {"ir", with(Method::IR)},
+        {"bdpt", with(Method::BDPT)},
+        {"bdpt --heuristic power", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Power; })},
+        {"bdpt --heuristic max", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Max; })},
+        {"bdpt --heuristic uniform", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Uniform; })},
+    };
+    if (alternatives) {
+        v.push_back({"bdpt --roulette throughput", with(Method::BDPT, [](RenderOptions& o) { o.roulette = Roulette::Throughput; })});
+        v.push_back({"bdpt --roulette albedo", with(Method::BDPT, [](RenderOptions& o) { o.roulette = Roulette::Albedo; })});
+        v.push_back({"bdpt --roulette off --maxdepth 9", with(Method::BDPT, [](RenderOptions& o) { o.roulette = Roulette::Off; o.maxDepth = 9; })});
+        v.push_back({"lt --roulette throughput", with(Method::LT, [](RenderOptions& o) { o.roulette = Roulette::Throughput; })});
+        v.push_back({"lt --roulette albedo", with(Method::LT, [](RenderOptions& o) { o.roulette = Roulette::Albedo; })});
+        v.push_back({"ir --roulette throughput", with(Method::IR, [](RenderOptions& o) { o.roulette = Roulette::Throughput; })});
+        v.push_back({"ir --roulette albedo", with(Method::IR, [](RenderOptions& o) { o.roulette = Roulette::Albedo; })});
+    }
+    return v;
+}
+
+static bool nearLamp(const Image& ref, int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            int u = x + dx, v = y + dy;
+            if (u >= 0 && v >= 0 && u < ref.width && v < ref.height && maxComponent(ref.at(u, v)) > 5) return true;
+        }
+    return false;
+}
+
+static double maskedMse(const Image& img, const Image& ref) {
+    double sum = 0;
+    long n = 0;
+    for (int y = 0; y < ref.height; ++y)
+        for (int x = 0; x < ref.width; ++x) {
+            if (nearLamp(ref, x, y)) continue;
+            for (int c = 0; c < 3; ++c) sum += sqr(img.at(x, y)[c] - ref.at(x, y)[c]);
+            n += 3;
+        }
+    return sum / std::max(1L, n);
+}
+
+int main(int argc, char** argv) {
+    int spp = 256, seeds = 4;
+    bool alternatives = false;
+    std::string only;
+    std::vector<std::string> scenes = {"cornell", "cornell-glass", "indirect", "glass-box"};
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        if (a == "--spp" && i + 1 < argc) spp = std::atoi(argv[++i]);
+        else if (a == "--seeds" && i + 1 < argc) seeds = std::atoi(argv[++i]);
+        else if (a == "--alternatives") alternatives = true;
+        else if (a == "--only" && i + 1 < argc) only = argv[++i];
+        else if (a == "--scenes" && i + 1 < argc) {
+            scenes.clear();
+            std::stringstream list(argv[++i]);
+            for (std::string s; std::getline(list, s, ',');) scenes.push_back(s);
+        } else {
+            std::fprintf(stderr, "usage: %s [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (spp < 1 || seeds < 1) { std::fprintf(stderr, "efficiency: --spp and --seeds must be at least 1\n"); return 2; }
+    std::vector<Variant> runs;
+    for (const Variant& v : variants(alternatives))
+        if (only.empty() || v.label.find(only) != std::string::npos || v.label == "nee --mis") runs.push_back(v);
+    std::printf("Equal samples (%d per pixel), %d seeds, one thread; medians over the seeds.\n\n", spp, seeds);
+    std::printf("| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis |\n|---|---|---|---|---|---|\n");
+    for (const std::string& name : scenes) {
+        Scene scene;
+        Image ref;
+        try {
+            scene = loadScene("scenes/" + name + ".scene");
+        } catch (const InputError& e) {
+            std::fprintf(stderr, "%s\n", e.what());
+            return 2;
+        }
+        if (!readPFM("scenes/refs/" + name + ".pfm", ref)) {
+            std::fprintf(stderr, "scenes/refs/%s.pfm:0: no reference (make refs)\n", name.c_str());
+            return 2;
+        }
+        setResolution(scene.camera, ref.width, ref.height);
+        std::vector<std::vector<double>> mse(runs.size()), cpu(runs.size()), rays(runs.size());
+        for (int seed = 1; seed <= seeds; ++seed)
+            for (size_t v = 0; v < runs.size(); ++v) {
+                RenderOptions o = runs[v].opt;
+                o.spp = spp;
+                o.seed = uint64_t(seed);
+                double c0 = threadCpuSeconds();
+                RenderResult r = render(scene, o);
+                cpu[v].push_back(threadCpuSeconds() - c0);
+                mse[v].push_back(maskedMse(r.image, ref));
+                rays[v].push_back(double(r.rays.closest + r.rays.shadow) / (double(r.passes) * ref.width * ref.height));
+                std::fprintf(stderr, "\r%s: seed %d/%d, %zu/%zu   ", name.c_str(), seed, seeds, v + 1, runs.size());
+            }
+        std::fprintf(stderr, "\r%60s\r", "");
+        double baseline = 0;
+        for (size_t v = 0; v < runs.size(); ++v)
+            if (runs[v].label == "nee --mis") baseline = 1 / (median(mse[v]) * median(cpu[v]));
+        for (size_t v = 0; v < runs.size(); ++v) {
+            double m = median(mse[v]), c = median(cpu[v]);
+            std::printf("| %s | %s | %.3g | %.3f | %.2f | %.2fx |\n", name.c_str(), runs[v].label.c_str(), m, c, median(rays[v]),
+                        1 / (m * c) / baseline);
+        }
+        std::fflush(stdout);
+    }
+    return 0;
+}
