@@ -22,10 +22,12 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <stb/stb_image_write.h>
 
@@ -144,6 +146,7 @@ struct Shape {
     Vec3 emission;        // radiance Le leaving the front side (black: not a light)
     float bumpAmplitude = 0, bumpFrequency = 0;  // shading-normal perturbation (section 4)
     int light = -1;       // index into Scene::lights when emissive
+    int line = 0;         // where the scene file defines it (for warnings)
 };
 
 struct Hit {
@@ -284,6 +287,7 @@ struct Light {
     Vec3 position;         // point light
     Vec3 intensity;        // point light: I [W/sr] per colour channel
     float power = 0;       // Phi, averaged over channels: chooses lights proportionally
+    int line = 0;          // where the scene file defines it (for warnings)
 };
 
 struct Camera {
@@ -600,6 +604,7 @@ struct Scene {
     bool adjointCorrection = true;     // false: --no-adjoint-correction
     bool symmetricRefraction = false;  // true: --symmetric-refraction
     bool fixedRayOffset = false;       // true: --fixed-ray-offset (section 2)
+    float exposure = 0;                // the PNG's default exposure in stops (--exposure overrides)
 };
 
 inline Hit intersectBruteForce(const std::vector<Shape>& shapes, const Ray& ray) {
@@ -915,6 +920,7 @@ inline float pdfCameraDirection(const Camera& cam, Vec3 dir) {
 //   sphere     cx cy cz  radius  MATERIAL  [emit R G B] [inside] [bump AMPLITUDE FREQUENCY]
 //   quad       qx qy qz  ux uy uz  vx vy vz  MATERIAL  [emit R G B] [bump AMPLITUDE FREQUENCY]
 //   pointlight x y z  R G B
+//   exposure   STOPS   (the PNG's default brightness, 2^STOPS; --exposure overrides it)
 // Every mistake is reported as "file:line: message" and the program exits with status 2.
 struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -1048,6 +1054,7 @@ struct SceneParser {
     void parseSphere() {
         Shape s;
         s.type = Shape::Sphere;
+        s.line = line;
         s.p = vec3("sphere centre");
         s.radius = number("sphere radius");
         if (!(s.radius > 0)) fail("sphere radius must be > 0");
@@ -1058,6 +1065,7 @@ struct SceneParser {
     void parseQuad() {
         Shape s;
         s.type = Shape::Quad;
+        s.line = line;
         s.p = vec3("quad corner");
         s.u = vec3("quad edge u");
         s.v = vec3("quad edge v");
@@ -1071,6 +1079,7 @@ struct SceneParser {
     void parsePointLight() {
         Light l;
         l.type = Light::Point;
+        l.line = line;
         l.position = vec3("light position");
         l.intensity = colour("intensity", false);
         done();
@@ -1090,7 +1099,12 @@ struct SceneParser {
         else if (d == "sphere") parseSphere();
         else if (d == "quad") parseQuad();
         else if (d == "pointlight") parsePointLight();
-        else fail("unknown directive '" + printable(d) + "' (camera, material, sphere, quad, pointlight)");
+        else if (d == "exposure") {
+            scene.exposure = number("exposure");
+            done();
+            if (!(std::fabs(scene.exposure) <= 50)) fail("exposure must lie in [-50, 50] stops");
+        }
+        else fail("unknown directive '" + printable(d) + "' (camera, material, sphere, quad, pointlight, exposure)");
     }
 
     void finish() {  // after the last line: what the scene as a whole must have
@@ -1099,6 +1113,7 @@ struct SceneParser {
             if (isBlack(scene.shapes[i].emission)) continue;
             Light l;
             l.shape = int(i);
+            l.line = scene.shapes[i].line;
             scene.shapes[i].light = int(scene.lights.size());
             scene.lights.push_back(l);
         }
@@ -1113,10 +1128,18 @@ struct SceneParser {
     }
 };
 
+// Line endings of any system: "\r\n" (Windows) and a lone '\r' (old Macs) end a line like '\n';
+// a UTF-8 byte-order mark (as some editors write) is skipped.
 inline Scene parseScene(const std::string& text, const std::string& fileName) {
     SceneParser parser;
     parser.file = fileName;
-    std::istringstream in(text);
+    std::string unified;
+    unified.reserve(text.size());
+    for (size_t i = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0; i < text.size(); ++i) {
+        if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') continue;
+        unified += text[i] == '\r' ? '\n' : text[i];
+    }
+    std::istringstream in(unified);
     for (std::string l; std::getline(in, l);) {
         ++parser.line;
         parser.parseLine(l);
@@ -1127,11 +1150,17 @@ inline Scene parseScene(const std::string& text, const std::string& fileName) {
 }
 
 inline Scene loadScene(const std::string& path) {
+    struct stat st;
+    if (stat(path.c_str(), &st) != 0) throw InputError(path + ": cannot open the scene file: " + std::strerror(errno));
+    if (S_ISDIR(st.st_mode)) throw InputError(path + ": is a folder, not a scene file");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ":0: cannot open scene file");
+    if (!in) throw InputError(path + ": cannot open the scene file: " + std::strerror(errno));
     std::stringstream buffer;
     buffer << in.rdbuf();
-    return parseScene(buffer.str(), path);
+    std::string text = buffer.str();
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+        throw InputError(path + ": the file is empty (a scene needs at least a camera and a light: README, scene format)");
+    return parseScene(text, path);
 }
 
 // == 8. Integrators ============================================================================
@@ -1848,15 +1877,31 @@ inline double secondsSince(std::chrono::steady_clock::time_point t0) {
 }
 
 // Ctrl-C: the first interrupt lets the pass in flight finish, then the render stops and the
-// completed passes are written as usual; a second one removes the file being written, if any,
-// and exits at once (status 130). Only async-signal-safe calls in the handler.
+// completed passes are written as usual (status 130). A second one removes the file being
+// written, if any, and exits at once (status 3, "abandoned"); but a second signal within a second
+// of the first is the same key press: `timeout -s INT` and some terminals signal the process and
+// then its whole group. Only async-signal-safe calls in the handler.
+constexpr int kExitInterrupted = 130, kExitAbandoned = 3;
 inline std::atomic<int> gInterrupts{0};
+inline std::atomic<long long> gFirstInterruptNs{0};
 inline char gFileBeingWritten[4096] = {0};
+inline void writeToStderr(const char* text) {
+    ssize_t written = write(2, text, std::strlen(text));
+    (void)written;  // nothing more to do if stderr is gone
+}
 extern "C" inline void onInterrupt(int) {
-    if (gInterrupts.fetch_add(1) >= 1) {
-        if (gFileBeingWritten[0]) unlink(gFileBeingWritten);
-        _exit(130);
+    timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    long long now = ts.tv_sec * 1000000000LL + ts.tv_nsec;
+    if (gInterrupts.fetch_add(1) == 0) {
+        gFirstInterruptNs = now;
+        writeToStderr("\nbdpt: interrupted: finishing the pass in flight, then writing the image (Ctrl-C again to abandon it)\n");
+        return;
     }
+    if (now - gFirstInterruptNs.load() < 1000000000LL) return;
+    if (gFileBeingWritten[0]) unlink(gFileBeingWritten);
+    writeToStderr("bdpt: abandoned: no image written\n");
+    _exit(kExitAbandoned);
 }
 
 inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
@@ -2085,6 +2130,13 @@ inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, in
                     }
             }
     }
+}
+
+inline bool hasExtension(const std::string& path, const std::string& ext) {  // case-insensitive
+    if (path.size() <= ext.size() || path[path.size() - ext.size() - 1] == '/') return false;
+    for (size_t i = 0; i < ext.size(); ++i)
+        if (std::tolower((unsigned char)path[path.size() - ext.size() + i]) != ext[i]) return false;
+    return true;
 }
 
 inline std::string replaceExtension(const std::string& path, const std::string& ext) {
@@ -2416,7 +2468,7 @@ Output
   --quiet           no progress bar and no summary line
   --help            this text
 Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;
-a second Ctrl-C exits at once, leaving no partial file.
+a second Ctrl-C (a second or more after the first) abandons the render: no file, status 3.
 Speed against accuracy
   --ref FILE.pfm    reference image (same resolution): after every pass compute RMSE, relMSE,
                     the relative bias of the mean and the firefly measure against it
@@ -2431,8 +2483,9 @@ Benchmark (no scene file)
                     in embree_bench's line format; with --bench-n N (shapes of each kind in the
                     stress scene, default 100000), --bench-m M (rays per set, default 4194304),
                     --bench-reps R (default 5), --seed S (default 1)
-Exit status: 0 done, 1 an output file could not be written, 2 bad scene file or option,
-130 interrupted.
+Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene
+file or option, 3 abandoned by a second Ctrl-C (nothing written), 130 interrupted by Ctrl-C (the
+completed passes written).
 )";
 
 struct CommandLine {
@@ -2445,6 +2498,7 @@ struct CommandLine {
     std::vector<std::string> failureLogs;
     std::string pfmA, pfmB;  // --compare or --average: the two images
     bool average = false;    // --average: write their mean to out
+    bool exposureGiven = false;  // else the scene's exposure directive sets it
     size_t benchM = 4194304;
 };
 
@@ -2455,15 +2509,21 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         if (i + 1 >= args.size()) fail("option " + args[i] + " needs a value");
         return args[++i];
     };
+    auto shortNumber = [](double x) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", x);
+        return std::string(text);
+    };
     auto number = [&](size_t& i, double lo, double hi) -> double {
         std::string name = args[i], v = value(i);
         char* end = nullptr;
         double x = std::strtod(v.c_str(), &end);
         if (end == v.c_str() || *end != 0 || !std::isfinite(x) || x < lo || x > hi)
-            fail("option " + name + " needs a number from " + std::to_string(lo) + " to " + std::to_string(hi) +
-                 ", got '" + printable(v) + "'");
+            fail("option " + name + " needs a number from " + shortNumber(lo) + " to " + shortNumber(hi) + ", got '" +
+                 printable(v) + "'");
         return x;
     };
+    std::set<std::string> given;  // the options on the line, to refuse those that do not apply
     auto integer = [&](size_t& i, double lo, double hi) -> long long {
         std::string name = args[i];
         double x = number(i, lo, hi);
@@ -2472,6 +2532,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
     };
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
+        given.insert(a);
         if (a == "--help" || a == "-h") cl.help = true;
         else if (a == "--method") {
             std::string m = value(i);
@@ -2509,7 +2570,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (a == "--seed") cl.opt.seed = uint64_t(integer(i, 0, 9e15));
         else if (a == "--threads") cl.opt.threads = int(integer(i, 1, 1024));
         else if (a == "--out") cl.out = value(i);
-        else if (a == "--exposure") cl.opt.exposure = float(number(i, -50, 50));
+        else if (a == "--exposure") cl.opt.exposure = float(number(i, -50, 50)), cl.exposureGiven = true;
         else if (a == "--quiet") cl.opt.quiet = true;
         else if (a == "--ref") cl.refPath = value(i);
         else if (a == "--log") cl.logPath = value(i);
@@ -2532,6 +2593,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             char tail = 0;
             if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
                 fail("option --res needs WIDTHxHEIGHT, each 1 to 16384, got '" + printable(v) + "'");
+            if (double(w) * h > 64e6) fail("option --res: " + printable(v) + " is larger than 64 megapixels (as in scene files)");
             cl.width = w;
             cl.height = h;
         } else if (!a.empty() && a[0] == '-') fail("unknown option '" + printable(a) + "'");
@@ -2539,11 +2601,27 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
     }
     if (!cl.help && !cl.benchRays && cl.failureLogs.empty() && cl.pfmA.empty() && cl.scenePath.empty()) fail("no scene file given");
-    if (!cl.help && replaceExtension(cl.out, ".pfm") == cl.out) fail("--out must not end in .pfm (the PFM goes beside the PNG)");
-    if (!cl.strategiesDir.empty()) {
-        if (cl.opt.method != Method::BDPT) fail("--strategies needs --method bdpt");
-        cl.opt.strategyMaxLength = cl.strategyLength;
-    }
+    if (cl.help || cl.benchRays || !cl.failureLogs.empty()) return cl;
+    if (!hasExtension(cl.out, ".png")) fail("--out must name a .png file (the PFM goes beside it), got '" + printable(cl.out) + "'");
+    if (!cl.logPath.empty() && !hasExtension(cl.logPath, ".csv")) fail("--log must name a .csv file, got '" + printable(cl.logPath) + "'");
+    if (!cl.pfmA.empty()) return cl;
+    // Options that would be ignored by the chosen method are mistakes: say whose they are.
+    auto onlyFor = [&](const char* option, std::initializer_list<Method> methods, const char* whose) {
+        if (given.count(option) && std::find(methods.begin(), methods.end(), cl.opt.method) == methods.end())
+            fail(std::string(option) + " applies to " + whose + ", not to --method " + methodName(cl.opt.method));
+    };
+    onlyFor("--mis", {Method::NEE}, "--method nee");
+    onlyFor("--heuristic", {Method::BDPT}, "--method bdpt");
+    onlyFor("--strategies", {Method::BDPT}, "--method bdpt");
+    onlyFor("--strategy-length", {Method::BDPT}, "--method bdpt (with --strategies)");
+    onlyFor("--vpls", {Method::IR}, "--method ir");
+    onlyFor("--clamp", {Method::IR}, "--method ir");
+    onlyFor("--roulette", {Method::LT, Method::IR, Method::BDPT}, "the methods that trace light paths (lt, ir, bdpt)");
+    onlyFor("--no-adjoint-correction", {Method::LT, Method::IR, Method::BDPT}, "the methods that trace light paths (lt, ir, bdpt)");
+    if (given.count("--strategy-length") && cl.strategiesDir.empty()) fail("--strategy-length applies with --strategies DIR");
+    if (given.count("--time") && given.count("--spp"))
+        fail("--time and --spp both given: --time renders passes until the time is up, --spp a number of them; give one");
+    if (!cl.strategiesDir.empty()) cl.opt.strategyMaxLength = cl.strategyLength;
     return cl;
 }
 
@@ -2562,6 +2640,79 @@ inline std::string raysPerSample(const RenderResult& r) {
     std::snprintf(text, sizeof text, "%.2f rays per sample (%.2f closest-hit, %.2f shadow)",
                   (r.rays.closest + r.rays.shadow) / samples, r.rays.closest / samples, r.rays.shadow / samples);
     return text;
+}
+
+// Why a file cannot be written at path ("" if it can): checked before any work, so that a long
+// render never ends in "cannot write".
+inline std::string unwritable(const std::string& path) {
+    struct stat st;
+    if (stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return "it is a folder";
+    size_t slash = path.find_last_of('/');
+    std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    if (stat(dir.c_str(), &st) != 0) return "the folder " + dir + " does not exist";
+    if (!S_ISDIR(st.st_mode)) return dir + " is not a folder";
+    if (access(dir.c_str(), W_OK) != 0) return "no permission to write in " + dir;
+    return "";
+}
+
+inline bool sameFile(const std::string& a, const std::string& b) {
+    struct stat sa, sb;
+    return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+// mkdir -p; false if some part cannot be made.
+inline bool makeFolders(const std::string& path) {
+    for (size_t i = 1; i <= path.size(); ++i) {
+        if (i < path.size() && path[i] != '/') continue;
+        std::string part = path.substr(0, i);
+        struct stat st;
+        if (stat(part.c_str(), &st) == 0 ? !S_ISDIR(st.st_mode) : mkdir(part.c_str(), 0777) != 0) return false;
+    }
+    return true;
+}
+
+// Every file the render will write, checked (and --strategies DIR made) before it starts.
+inline std::string checkOutputs(const CommandLine& cl, const std::string& pfm) {
+    std::vector<std::string> files = {cl.out, pfm};
+    if (!cl.logPath.empty()) files.push_back(cl.logPath);
+    for (const std::string& f : files) {
+        if (sameFile(f, cl.scenePath) || (!cl.refPath.empty() && sameFile(f, cl.refPath)))
+            return "will not write " + f + ": it is an input of this run";
+        std::string why = unwritable(f);
+        if (!why.empty()) return "cannot write " + f + ": " + why;
+    }
+    if (!cl.strategiesDir.empty()) {
+        if (!makeFolders(cl.strategiesDir)) return "cannot make the folder " + cl.strategiesDir + " for the strategy images";
+        std::string why = unwritable(cl.strategiesDir + "/x.png");
+        if (!why.empty()) return "cannot write into " + cl.strategiesDir + ": " + why;
+    }
+    return "";
+}
+
+// Mistakes in a scene that still renders, but not as its author meant: said before the work.
+//  - one light takes nearly all of the choice by power (a huge dim sky sphere starves a lamp);
+//  - a quick preview sees no light at all (a lamp facing away, or a light in a closed box).
+inline void warnAboutScene(const Scene& scene, const RenderOptions& opt, std::ostream& err) {
+    for (size_t i = 0; i < scene.lights.size() && scene.lights.size() > 1; ++i) {
+        float share = lightChoiceProbability(scene, int(i));
+        char percent[32];
+        std::snprintf(percent, sizeof percent, "%.7g", 100.0 * share);
+        if (share > 0.999f)
+            err << scene.file << ":" << scene.lights[i].line << ": warning: this light takes " << percent
+                << "% of the light choice (by power): the others are almost never sampled, and where they matter nee, lt "
+                   "and bdpt will be noisy\n";
+    }
+    Scene preview = scene;
+    setResolution(preview.camera, 32, 32);
+    RenderOptions o;
+    o.method = Method::BDPT;
+    o.spp = 16;
+    o.maxDepth = std::min(opt.maxDepth, 8);
+    o.quiet = true;
+    o.threads = 1;
+    if (imageMean(render(preview, o).image) == 0)
+        err << scene.file << ": warning: a quick preview (bdpt, 32x32, 16 samples per pixel) sees no light at all: is a light "
+               "facing away (a quad emits from its u x v side only), or shut in?\n";
 }
 
 inline int runCommandLine(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -2596,14 +2747,22 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         return 2;
     }
     if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
+    std::string pfm = replaceExtension(cl.out, ".pfm");
+    std::string problem = checkOutputs(cl, pfm);
+    if (!problem.empty()) {
+        err << "bdpt: " << problem << " (nothing rendered)\n";
+        return 1;
+    }
+    warnAboutScene(scene, cl.opt, err);
+    if (!cl.exposureGiven) cl.opt.exposure = scene.exposure;
     scene.symmetricRefraction = cl.symmetricRefraction;
     scene.adjointCorrection = !cl.noAdjointCorrection;
     scene.fixedRayOffset = cl.fixedRayOffset;
     Image ref;
     if (!cl.refPath.empty()) {
-        if (!readPFM(cl.refPath, ref)) { err << cl.refPath << ":0: cannot read reference (a PFM written by bdpt)\n"; return 2; }
+        if (!readPFM(cl.refPath, ref)) { err << cl.refPath << ": cannot read the reference (a PFM written by bdpt)\n"; return 2; }
         if (ref.width != scene.camera.width || ref.height != scene.camera.height) {
-            err << cl.refPath << ":0: reference is " << ref.width << "x" << ref.height << ", the image " << scene.camera.width << "x"
+            err << cl.refPath << ": the reference is " << ref.width << "x" << ref.height << ", the image " << scene.camera.width << "x"
                 << scene.camera.height << " (use --res)\n";
             return 2;
         }
@@ -2644,7 +2803,6 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         f.close();
         if (!commitFile(tmp, cl.logPath, bool(f))) { err << "bdpt: cannot write " << cl.logPath << "\n"; return 1; }
     }
-    std::string pfm = replaceExtension(cl.out, ".pfm");
     if (!writePNG(r.image, cl.out, cl.opt.exposure) || !writePFM(r.image, pfm)) {
         err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
         std::remove(cl.out.c_str());
@@ -2659,7 +2817,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     }
     if (r.interrupted) {
         err << "bdpt: interrupted: wrote the " << r.passes << " completed samples per pixel to " << cl.out << " and " << pfm << "\n";
-        return 130;
+        return kExitInterrupted;
     }
     if (!cl.opt.quiet && cl.opt.method == Method::IR && cl.opt.clamp > 0)
         out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved << "% of the energy gathered from VPLs\n";

@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
 REF_SECONDS=${REF_SECONDS:-90}    # per reference seed: far more than a run, so its noise is far below
 RUN_SECONDS=${RUN_SECONDS:-4}     # per method and scene (90 runs: 6 minutes)
-ALL_SCENES="cornell cornell-point cornell-glass indirect furnace refraction shading-normals sds sds-point"
+ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refraction shading-normals sds sds-point"
 SCENES=${SCENES:-$ALL_SCENES}
 FIG=lecture_notes/figures
 LOGS=build/charts
@@ -22,6 +22,19 @@ mkdir -p "$FIG" "$LOGS/refs" scenes/refs
 clampFor() {  # G is in the scene's units: a clamp that removes a visible share in each
   case $1 in cornell*|indirect|shading-normals) echo 1e-5 ;; furnace) echo 0.1 ;; refraction) echo 0.05 ;; *) echo 0.2 ;; esac
 }
+# One colour per method and one dash pattern per variant, the same in every chart (colour-blind
+# safe: Okabe-Ito): pt black, nee blue, lt orange, ir purple, bdpt vermilion.
+lineStyle() {
+  case $1 in
+    pt) echo "lc rgb '#000000' dt 1" ;;          nee) echo "lc rgb '#0072b2' dt 1" ;;
+    nee-mis) echo "lc rgb '#0072b2' dt 2" ;;     lt) echo "lc rgb '#e69f00' dt 1" ;;
+    ir) echo "lc rgb '#cc79a7' dt 1" ;;          ir-clamp) echo "lc rgb '#cc79a7' dt 2" ;;
+    bdpt-balance) echo "lc rgb '#d55e00' dt 1" ;; bdpt-power) echo "lc rgb '#d55e00' dt 2" ;;
+    bdpt-max) echo "lc rgb '#d55e00' dt 3" ;;    bdpt-uniform) echo "lc rgb '#d55e00' dt 4" ;;
+    *) echo "lc rgb '#999999' dt 1" ;;
+  esac
+}
+
 # The ten runs of every scene: label|options
 methods() {
   printf '%s\n' "pt|--method pt" "nee|--method nee" "nee-mis|--method nee --mis" "lt|--method lt" "ir|--method ir" \
@@ -86,13 +99,11 @@ charts() {
   for s in $SCENES; do
     [ -f scenes/refs/$s.pfm ] || { echo "no reference scenes/refs/$s.pfm: run make refs" >&2; exit 1; }
     plot=""
-    local colors=(9400d3 009e73 56b4e9 e69f00 f0e442 0072b2 d55e00 000000 cc79a7 999999) c=0
     while IFS='|' read -r label opts; do
       # shellcheck disable=SC2086
       ./bdpt scenes/$s.scene $opts --res "$RES" --time "$RUN_SECONDS" --quiet --ref scenes/refs/$s.pfm \
         --log "$LOGS/$s-$label.csv" --out "$LOGS/$s-$label.png"
-      plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:7 with lines lw 2 lc rgb '#${colors[c]}' title '$label'"
-      c=$((c + 1))
+      plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:7 with lines lw 2 $(lineStyle "$label") title '$label'"
     done < <(methods "$s")
     refnoise=$(awk -F, -v s="$s" '$1 == s { print $6 / 2 }' scenes/refs/refs.csv)
     # an exact reference (the furnace) has no noise to draw on a log scale

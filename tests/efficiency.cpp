@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
             return 2;
         }
         if (!readPFM("scenes/refs/" + name + ".pfm", ref)) {
-            std::fprintf(stderr, "scenes/refs/%s.pfm:0: no reference (make refs)\n", name.c_str());
+            std::fprintf(stderr, "scenes/refs/%s.pfm: no reference (make refs)\n", name.c_str());
             return 2;
         }
         setResolution(scene.camera, ref.width, ref.height);

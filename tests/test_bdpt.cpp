@@ -354,7 +354,7 @@ TEST_CASE("--strategies writes every (s,t) image, weighted and not, and the two 
     CHECK(!fileExists(dir + "/s0_t5_unweighted.png"));  // k = 4 > --strategy-length
     std::ostringstream so2, se2;
     CHECK(runCommandLine({"scenes/cornell.scene", "--method", "nee", "--strategies", dir}, so2, se2) == 2);
-    CHECK(se2.str().find("--strategies needs --method bdpt") != std::string::npos);
+    CHECK(se2.str().find("--strategies applies to --method bdpt, not to --method nee") != std::string::npos);
     CHECK(runCommandLine({"scenes/cornell.scene", "--heuristic", "best"}, so2, se2) == 2);
     CHECK(se2.str().find("unknown heuristic 'best'") != std::string::npos);
 }

@@ -252,7 +252,7 @@ TEST_CASE("bad input: file:line message, exit 2, no output file") {
     expectBadInput(cam + light, {"--spp"}, "bdpt: option --spp needs a value");
     std::ostringstream so, se;
     CHECK(runCommandLine({"build/does-not-exist.scene", "--out", "build/tmp_bad_out.png"}, so, se) == 2);
-    CHECK(se.str() == "build/does-not-exist.scene:0: cannot open scene file\n");
+    CHECK(se.str() == "build/does-not-exist.scene: cannot open the scene file: No such file or directory\n");
     CHECK(!fileExists("build/tmp_bad_out.png"));
 }
 

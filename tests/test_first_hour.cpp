@@ -1,0 +1,210 @@
+// The mistakes of a first hour with the program, each answered by a clear message before any work
+// is done: output paths, options that do not apply, scene files from other editors and systems,
+// scenes that render but not as meant, Ctrl-C.
+#include "helpers.h"
+#include <signal.h>
+#include <sys/wait.h>
+
+struct Run {
+    int status;
+    std::string out, err;
+};
+
+static Run run(const std::vector<std::string>& args) {
+    std::ostringstream so, se;
+    int status = runCommandLine(args, so, se);
+    return {status, so.str(), se.str()};
+}
+
+static bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST_CASE("output paths are checked before rendering: the path and the reason, status 1, nothing rendered") {
+    auto t0 = std::chrono::steady_clock::now();
+    Run r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "/nonexistent/dir/x.png"});
+    CHECK(r.status == 1);
+    CHECK(r.err == "bdpt: cannot write /nonexistent/dir/x.png: the folder /nonexistent/dir does not exist (nothing rendered)\n");
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh.png", "--log", "/nonexistent/log.csv"});
+    CHECK(r.status == 1);
+    CHECK(contains(r.err, "cannot write /nonexistent/log.csv: the folder /nonexistent does not exist"));
+    CHECK(!fileExists("build/tmp_fh.png"));  // a bad --log no longer costs the image: nothing is done at all
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh.png", "--log", "build"});
+    CHECK(r.status == 2);  // not a .csv name
+    mkdir("build/tmp_fh_folder.png", 0777);
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh_folder.png"});
+    CHECK(r.status == 1);
+    CHECK(contains(r.err, "cannot write build/tmp_fh_folder.png: it is a folder"));
+    CHECK(secondsSince(t0) < 5);  // 100,000 passes were asked for each time: none was rendered
+}
+
+TEST_CASE("--out takes a .png name only, and no run writes over one of its inputs") {
+    Run r = run({"scenes/cornell.scene", "--out", "build/x.jpg"});
+    CHECK(r.status == 2);
+    CHECK(contains(r.err, "--out must name a .png file (the PFM goes beside it), got 'build/x.jpg'"));
+    CHECK(run({"scenes/cornell.scene", "--out", "scenes/cornell.scene"}).status == 2);
+    CHECK(run({"scenes/cornell.scene", "--out", "build/x.pfm"}).status == 2);
+    // A scene file that happens to end in .png (or .csv) is still not overwritten.
+    std::string scene = readFile("scenes/furnace.scene");
+    std::string path = writeTempFile("scene.png", scene);
+    r = run({path, "--spp", "1", "--res", "8x8", "--out", path});
+    CHECK(r.status == 1);
+    CHECK(contains(r.err, "will not write " + path + ": it is an input of this run"));
+    CHECK(readFile(path) == scene);
+    std::string csv = writeTempFile("scene.csv", scene);
+    r = run({csv, "--spp", "1", "--res", "8x8", "--out", "build/tmp_fh2.png", "--log", csv});
+    CHECK(r.status == 1);
+    CHECK(readFile(csv) == scene);
+    CHECK(run({"scenes/furnace.scene", "--spp", "1", "--res", "8x8", "--quiet", "--out", "build/tmp_fh2.PNG"}).status == 0);
+}
+
+TEST_CASE("--strategies DIR is created, with its parents") {
+    std::system("rm -rf build/tmp_fh_strategies");
+    Run r = run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--strategy-length", "2", "--strategies",
+                 "build/tmp_fh_strategies/a/b", "--out", "build/tmp_fh3.png", "--quiet"});
+    CHECK(r.status == 0);
+    CHECK(fileExists("build/tmp_fh_strategies/a/b/pyramid-weighted.png"));
+    CHECK(fileExists("build/tmp_fh_strategies/a/b/s1_t2_unweighted.pfm"));
+    std::ofstream("build/tmp_fh_file") << "x";
+    r = run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--strategies", "build/tmp_fh_file/sub", "--out", "build/tmp_fh3.png"});
+    CHECK(r.status == 1);
+    CHECK(contains(r.err, "cannot make the folder build/tmp_fh_file/sub"));
+}
+
+TEST_CASE("options that the method would ignore are refused, naming the method they belong to") {
+    struct Case { std::vector<std::string> args; std::string message; };
+    for (const Case& c : std::vector<Case>{
+             {{"--method", "pt", "--heuristic", "max"}, "--heuristic applies to --method bdpt, not to --method pt"},
+             {{"--mis"}, "--mis applies to --method nee, not to --method bdpt"},
+             {{"--method", "nee", "--clamp", "1"}, "--clamp applies to --method ir, not to --method nee"},
+             {{"--method", "lt", "--vpls", "4"}, "--vpls applies to --method ir, not to --method lt"},
+             {{"--method", "nee", "--roulette", "off"}, "--roulette applies to the methods that trace light paths (lt, ir, bdpt)"},
+             {{"--method", "pt", "--no-adjoint-correction"}, "--no-adjoint-correction applies to the methods that trace light paths"},
+             {{"--strategy-length", "3"}, "--strategy-length applies with --strategies DIR"},
+             {{"--time", "1", "--spp", "4"}, "--time and --spp both given"},
+             {{"--res", "16384x16384"}, "option --res: 16384x16384 is larger than 64 megapixels"},
+             {{"--spp", "0"}, "option --spp needs a number from 1 to 1e+08, got '0'"},
+         }) {
+        std::vector<std::string> args = {"scenes/cornell.scene", "--out", "build/tmp_fh4.png"};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        Run r = run(args);
+        CAPTURE(c.message);
+        CHECK(r.status == 2);
+        CHECK(contains(r.err, c.message));
+    }
+    CHECK(!fileExists("build/tmp_fh4.png"));
+}
+
+TEST_CASE("scene files from other editors and systems: a byte-order mark, CR and CRLF line endings") {
+    const std::string lines[] = {"camera 0 0 -3  0 0 0  0 1 0  40  8 8", "material m diffuse 0.5 0.5 0.5",
+                                 "sphere 0 0 0  1  m emit 1 1 1", "# a comment"};
+    for (const std::string& newline : {std::string("\n"), std::string("\r\n"), std::string("\r")})
+        for (bool bom : {false, true}) {
+            std::string text = bom ? "\xEF\xBB\xBF" : "";
+            for (const std::string& l : lines) text += l + newline;
+            CAPTURE(int(newline.size()));
+            CAPTURE(bom);
+            Scene s = parseScene(text, "editors.scene");
+            CHECK(s.shapes.size() == 1);
+            CHECK(s.camera.width == 8);
+        }
+    // A mistake on line 3 is still reported on line 3 with CRLF endings.
+    try {
+        parseScene("camera 0 0 -3  0 0 0  0 1 0  40  8 8\r\nmaterial m diffuse 0.5 0.5 0.5\r\ncube 1\r\n", "crlf.scene");
+        CHECK(false);
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()) == "crlf.scene:3: unknown directive 'cube' (camera, material, sphere, quad, pointlight, exposure)");
+    }
+}
+
+TEST_CASE("a missing, empty or folder scene file: the real problem, not 'no camera'") {
+    CHECK(run({"build/no-such.scene"}).err == "build/no-such.scene: cannot open the scene file: No such file or directory\n");
+    std::string empty = writeTempFile("empty.scene", " \n\n");
+    CHECK(contains(run({empty}).err, empty + ": the file is empty"));
+    CHECK(run({"scenes"}).err == "scenes: is a folder, not a scene file\n");
+    CHECK(run({"scenes"}).status == 2);
+}
+
+TEST_CASE("warnings before the work: one light takes nearly all of the choice; nothing the camera sees is lit") {
+    // A huge dim sky sphere and a small lamp: by power the sky takes 99.99% of the light choice.
+    std::string sky = writeTempFile("sky.scene", "camera 0 1 -4  0 1 0  0 1 0  50  16 16\nmaterial m diffuse 0.5 0.5 0.5\n"
+                                                 "quad -2 0 -2  4 0 0  0 0 4  m\n"
+                                                 "sphere 0 0 0  1000  m emit 0.05 0.05 0.05 inside\n"
+                                                 "quad -0.1 2 -0.1  0 0 0.2  0.2 0 0  m emit 5 5 5\n");
+    Run r = run({sky, "--spp", "1", "--out", "build/tmp_fh5.png", "--quiet"});
+    CHECK(r.status == 0);
+    CHECK(contains(r.err, sky + ":4: warning: this light takes 99.9"));
+    // A lamp above an open floor whose front (u x v) faces up, into the empty sky: nothing is lit.
+    std::string away = writeTempFile("away.scene", "camera 0 1 -4  0 0 0  0 1 0  50  16 16\nmaterial m diffuse 0.5 0.5 0.5\n"
+                                                   "quad -2 0 -2  4 0 0  0 0 4  m\n"
+                                                   "quad -0.1 2 -0.1  0 0 0.2  0.2 0 0  m emit 5 5 5\n");
+    r = run({away, "--spp", "1", "--out", "build/tmp_fh5.png", "--quiet"});
+    CHECK(r.status == 0);
+    CHECK(contains(r.err, away + ": warning: a quick preview"));
+    CHECK(contains(r.err, "sees no light at all"));
+    // The box of the furnace and the Cornell box raise neither.
+    CHECK(run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--out", "build/tmp_fh5.png", "--quiet"}).err.empty());
+}
+
+TEST_CASE("a scene sets the PNG's default exposure (the furnace: grey, not white); --exposure overrides it") {
+    CHECK(loadScene("scenes/furnace.scene").exposure == -2);
+    for (bool override : {false, true}) {
+        std::vector<std::string> args = {"scenes/furnace.scene", "--res", "8x8", "--spp", "4", "--quiet", "--out", "build/tmp_fh6.png"};
+        if (override) args.insert(args.end(), {"--exposure", "0"});
+        REQUIRE(run(args).status == 0);
+        Image img;
+        REQUIRE(readPFM("build/tmp_fh6.pfm", img));
+        REQUIRE(writePNG(img, "build/tmp_fh6-expected.png", override ? 0 : -2));
+        CHECK(readFile("build/tmp_fh6.png") == readFile("build/tmp_fh6-expected.png"));
+        int grey = toSRGBBytes(img, override ? 0 : -2)[0];  // 2 clips to white; 0.5 (within noise) is sRGB 188
+        CHECK(grey >= (override ? 255 : 180));
+        CHECK(grey <= (override ? 255 : 196));
+    }
+    CHECK(contains(run({"scenes/furnace.scene", "--exposure", "99"}).err, "--exposure needs a number from -50 to 50"));
+}
+
+// Runs the program in a child with the given arguments, sends SIGINT after `first` seconds and,
+// if second > 0, again `second` seconds later; returns the exit status and what it printed.
+static Run interrupted(const std::vector<std::string>& args, double first, double second) {
+    int pipeErr[2];
+    REQUIRE(pipe(pipeErr) == 0);
+    pid_t pid = fork();
+    if (pid == 0) {
+        dup2(pipeErr[1], 2);
+        close(pipeErr[0]);
+        std::signal(SIGINT, onInterrupt);
+        std::ostringstream so;
+        std::_Exit(runCommandLine(args, so, std::cerr));
+    }
+    close(pipeErr[1]);
+    usleep(useconds_t(first * 1e6));
+    kill(pid, SIGINT);
+    if (second > 0) {
+        usleep(useconds_t(second * 1e6));
+        kill(pid, SIGINT);
+    }
+    std::string err;
+    char buffer[512];
+    for (ssize_t n; (n = read(pipeErr[0], buffer, sizeof buffer)) > 0;) err.append(buffer, size_t(n));
+    close(pipeErr[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, "", err};
+}
+
+TEST_CASE("Ctrl-C: said at once; twice within a second is one press (timeout signals the group); later it abandons") {
+    std::remove("build/tmp_fh_int.png");
+    std::remove("build/tmp_fh_int.pfm");
+    // `timeout -s INT` sends SIGINT to the process and then to its group: two signals at once.
+    Run r = interrupted({"scenes/cornell.scene", "--res", "64x64", "--spp", "1000000", "--out", "build/tmp_fh_int.png"}, 1.0, 0.05);
+    CHECK(r.status == 130);
+    CHECK(contains(r.err, "bdpt: interrupted: finishing the pass in flight, then writing the image (Ctrl-C again to abandon it)"));
+    CHECK(fileExists("build/tmp_fh_int.png"));
+    CHECK(fileExists("build/tmp_fh_int.pfm"));
+    // A second press 1.5 s later, inside a long pass (2048x2048): abandoned, status 3, no file.
+    std::remove("build/tmp_fh_int2.png");
+    std::remove("build/tmp_fh_int2.pfm");
+    r = interrupted({"scenes/cornell.scene", "--res", "2048x2048", "--spp", "1000000", "--out", "build/tmp_fh_int2.png"}, 0.5, 1.5);
+    CHECK(r.status == kExitAbandoned);
+    CHECK(contains(r.err, "bdpt: abandoned: no image written"));
+    CHECK(!fileExists("build/tmp_fh_int2.png"));
+    CHECK(!fileExists("build/tmp_fh_int2.pfm"));
+}
