@@ -4,6 +4,12 @@ MAKEFLAGS += --jobs=$(shell nproc 2>/dev/null || echo 2)  # test programs build 
 CXX      ?= g++
 CXXFLAGS ?= -O2 -g -std=c++17 -Wall -Wextra -pthread
 LDLIBS   ?= -lstb -pthread
+# Without Debian's libstb-dev: make STB_DIR=FOLDER, where FOLDER holds stb_image_write.h (the one
+# public-domain header of github.com/nothings/stb); it is then compiled into each program.
+ifdef STB_DIR
+CXXFLAGS += -isystem $(STB_DIR) -DBDPT_STB_HEADER
+LDLIBS := $(filter-out -lstb,$(LDLIBS))
+endif
 # NATIVE=1: this CPU's instructions (8-wide BVH nodes with AVX); no fused multiply-adds, so
 # images and ray checksums stay bit-identical to the portable (SSE2, 4-wide) build.
 NATIVE_FLAGS := -march=native -ffp-contract=off
@@ -27,7 +33,7 @@ bdpt: bdpt.cpp build/flags
 run: bdpt
 	./bdpt scenes/cornell.scene --spp 64 --out cornell.png
 
-build/%: tests/%.cpp bdpt.cpp tests/helpers.h build/flags
+build/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
@@ -40,10 +46,10 @@ endef
 
 # The BVH tests once more as built by NATIVE=1 (8-wide AVX nodes where the CPU has AVX), and as
 # on a CPU without SSE (the scalar box test).
-build/native/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h build/flags
+build/native/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h tests/bench.h build/flags
 	@mkdir -p build/native
 	$(CXX) $(CXXFLAGS) $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
-build/scalar/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h build/flags
+build/scalar/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h tests/bench.h build/flags
 	@mkdir -p build/scalar
 	$(CXX) $(CXXFLAGS) -U__SSE2__ -U__AVX__ -I. -o $@ $< $(LDLIBS)
 
@@ -66,7 +72,7 @@ figures: bdpt
 SANITIZE := -O1 -g -std=c++17 -Wall -Wextra -pthread -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 SAN_TESTS := $(patsubst tests/%.cpp,build/san/%,$(wildcard tests/test_*.cpp))
 
-build/san/%: tests/%.cpp bdpt.cpp tests/helpers.h
+build/san/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h
 	@mkdir -p build/san
 	$(CXX) $(SANITIZE) -I. -o $@ $< $(LDLIBS)
 
@@ -84,26 +90,35 @@ fuzz: build/fuzz_scene
 	cp tests/bad_scenes/*.scene scenes/*.scene build/fuzz-corpus/
 	./build/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 -print_final_stats=1 build/fuzz-corpus
 
-# BVH against Embree (installs libembree-dev for the yardstick in ../shared/perf).
-build/bdpt-native: bdpt.cpp build/flags
+# The BVH against Embree on the same rays (tests/bench.sh). Embree's half is built only where
+# Debian's libembree-dev is installed.
+EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
+build/bench_rays: tests/bench_rays.cpp tests/bench.h bdpt.cpp build/flags
 	@mkdir -p build
-	$(CXX) $(CXXFLAGS) $(NATIVE_FLAGS) -o $@ $< $(LDLIBS)
+	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
+build/native/bench_rays: tests/bench_rays.cpp tests/bench.h bdpt.cpp build/flags
+	@mkdir -p build/native
+	$(CXX) $(CXXFLAGS) $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
+build/embree_rays: tests/embree_rays.cpp tests/bench.h bdpt.cpp build/flags
+	@mkdir -p build
+	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS) -lembree3
 
-bench: bdpt build/bdpt-native
+bench: bdpt build/bench_rays build/native/bench_rays $(if $(EMBREE),build/embree_rays)
+	@[ -n "$(EMBREE)" ] || echo "make bench: Embree is not installed (apt-get install libembree-dev), so there are no ratios"
 	tests/bench.sh
 
 # Error at equal samples and efficiency 1/(MSE x CPU-s) of every method (tests/efficiency.cpp).
-build/efficiency: tests/efficiency.cpp bdpt.cpp build/flags
+build/efficiency: tests/efficiency.cpp tests/bench.h bdpt.cpp build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
-# The table goes to lecture_notes/figures/efficiency.md and into the README between its markers.
+# The table goes to lecture_notes/figures/efficiency.md and into Appendix A of the notes.
 efficiency: build/efficiency
 	./build/efficiency $(EFFICIENCY_ARGS) > build/efficiency.md.tmp && mv build/efficiency.md.tmp lecture_notes/figures/efficiency.md
 	awk -v table=lecture_notes/figures/efficiency.md ' \
 	  /<!-- efficiency:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next } \
 	  /<!-- efficiency:end -->/ { skip = 0 } \
-	  !skip' README.md > README.md.tmp && mv README.md.tmp README.md
+	  !skip' lecture_notes/appendix-a-speed-and-accuracy.md > build/appendix-a.tmp && mv build/appendix-a.tmp lecture_notes/appendix-a-speed-and-accuracy.md
 	cat lecture_notes/figures/efficiency.md
 
 clean:

@@ -29,7 +29,14 @@
 #include <vector>
 #include <sys/stat.h>
 #include <unistd.h>
+// stb_image_write: Debian's libstb-dev (the header in stb/, its code in -lstb), or where that is
+// missing the single header itself, compiled here: make STB_DIR=FOLDER (README, set-up).
+#ifdef BDPT_STB_HEADER
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
+#else
 #include <stb/stb_image_write.h>
+#endif
 
 // == 1. Math & random numbers ================================================================
 // Float vectors for geometry and colour (RGB); the film accumulates in double.
@@ -2145,190 +2152,6 @@ inline std::string replaceExtension(const std::string& path, const std::string& 
     return (hasExt ? path.substr(0, dot) : path) + ext;
 }
 
-// Ray-tracing benchmark (--bench-rays): exactly the scenes and rays of ../shared/perf/README.md,
-// so the BVH's Mrays/s stand beside Embree's measured in the same run, in the same line format.
-struct SplitMix64 {
-    uint64_t s;
-    uint64_t next() {
-        uint64_t z = (s += 0x9E3779B97F4A7C15ULL);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-        return z ^ (z >> 31);
-    }
-    double u() { return double(next() >> 40) * 0x1p-24; }
-};
-
-struct BenchScene {
-    std::string name;
-    std::vector<Shape> shapes;
-    Vec3 camera;
-    float boxSize;
-};
-
-inline Shape benchQuad(Vec3 q, Vec3 u, Vec3 v) {
-    Shape s;
-    s.type = Shape::Quad;
-    s.p = q; s.u = u; s.v = v;
-    return s;
-}
-inline Shape benchSphere(Vec3 c, float r) {
-    Shape s;
-    s.p = c;
-    s.radius = r;
-    return s;
-}
-
-inline BenchScene benchCornell() {
-    BenchScene b{"cornell", {}, Vec3(278, 278, -800), 555};
-    b.shapes = {benchQuad({555, 0, 0}, {0, 555, 0}, {0, 0, 555}), benchQuad({0, 0, 0}, {0, 555, 0}, {0, 0, 555}),
-                benchQuad({343, 554, 332}, {-130, 0, 0}, {0, 0, -105}), benchQuad({0, 0, 0}, {555, 0, 0}, {0, 0, 555}),
-                benchQuad({555, 555, 555}, {-555, 0, 0}, {0, 0, -555}), benchQuad({0, 0, 555}, {555, 0, 0}, {0, 555, 0}),
-                benchSphere({190, 90, 190}, 90), benchSphere({370, 110, 370}, 110)};
-    return b;
-}
-
-inline BenchScene benchStress(uint64_t seed, int n) {
-    BenchScene b{"stress", {}, Vec3(0.5f, 0.5f, -1.5f), 1};
-    SplitMix64 g{seed ^ 0x1111111111111111ULL};
-    for (int i = 0; i < n; ++i) {
-        float x = float(g.u()), y = float(g.u()), z = float(g.u());
-        b.shapes.push_back(benchSphere({x, y, z}, float(0x1p-10 + 0x1p-8 * g.u())));
-    }
-    for (int i = 0; i < n; ++i) {
-        float v[9];
-        for (int k = 0; k < 9; ++k) v[k] = float(k < 3 ? g.u() : (g.u() - 0.5) * 0x1p-6);
-        b.shapes.push_back(benchQuad({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}));
-    }
-    return b;
-}
-
-inline Vec3 unitFloat(double x, double y, double z) {
-    double l = std::sqrt(x * x + y * y + z * z);
-    return Vec3(float(x / l), float(y / l), float(z / l));
-}
-
-inline std::vector<Ray> benchPrimaryRays(const BenchScene& b, size_t m) {
-    std::vector<Ray> rays(m);
-    double h = std::tan(40 * 3.14159265358979323846 / 180 / 2);
-    for (size_t k = 0; k < m; ++k) {
-        size_t p = k >> 2, i = p % 1024, j = p / 1024, s = k & 3;
-        double sx = (s & 1) ? 0.75 : 0.25, sy = (s & 2) ? 0.75 : 0.25;
-        rays[k] = {b.camera, unitFloat(-(2 * (i + sx) / 1024 - 1) * h, (1 - 2 * (j + sy) / 1024) * h, 1), kInf};
-    }
-    return rays;
-}
-
-inline std::vector<Ray> benchIncoherentRays(const BenchScene& b, uint64_t seed, size_t m) {
-    std::vector<Ray> rays(m);
-    SplitMix64 g{seed ^ 0x2222222222222222ULL};
-    for (size_t k = 0; k < m; ++k) {
-        double L = b.boxSize;
-        float ox = float(L * g.u()), oy = float(L * g.u()), oz = float(L * g.u());  // in this order
-        double x, y, z, l2;
-        do {
-            x = 2 * g.u() - 1; y = 2 * g.u() - 1; z = 2 * g.u() - 1;
-            l2 = (x * x + y * y) + z * z;
-        } while (l2 < 1e-6 || l2 > 1);
-        rays[k] = {Vec3(ox, oy, oz), unitFloat(x, y, z), kInf};
-    }
-    return rays;
-}
-
-struct BenchRun {
-    double seconds = 0, cpuSeconds = 0, sumT = 0;
-    unsigned long long hits = 0, sphereHits = 0;
-};
-
-inline double threadCpuSeconds() {
-    timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-// 64 blocks of rays, contiguous block ranges per thread, per-block sums added in block order:
-// the checksums are the same for any thread count.
-inline BenchRun benchTrace(const Bvh& bvh, const std::vector<Shape>& shapes, const std::vector<Ray>& rays, int threads, bool anyHit) {
-    const int kBlocks = 64;
-    size_t blockSize = (rays.size() + kBlocks - 1) / kBlocks;
-    std::vector<double> blockSum(kBlocks, 0.0), cpu(threads, 0.0);
-    std::vector<unsigned long long> blockHits(kBlocks, 0), blockSpheres(kBlocks, 0);
-    // Which shapes are spheres, one byte each: Embree's bench reads this off the hit's geomID,
-    // and a look into the 96-byte Shape records would add a cache miss per hit (10% of the time).
-    std::vector<uint8_t> isSphere(shapes.size());
-    for (size_t i = 0; i < shapes.size(); ++i) isSphere[i] = shapes[i].type == Shape::Sphere;
-    auto work = [&](int t) {
-#if defined(__SSE2__)
-        _mm_setcsr(_mm_getcsr() | 0x8040);  // flush denormals to zero, as Embree requires
-#endif
-        double c0 = threadCpuSeconds();
-        for (int blk = kBlocks * t / threads; blk < kBlocks * (t + 1) / threads; ++blk) {
-            double sum = 0;
-            unsigned long long hits = 0, spheres = 0;
-            for (size_t k = blk * blockSize; k < std::min(rays.size(), (blk + 1) * blockSize); ++k) {
-                Hit h = anyHit ? traverseBvh<true>(bvh, rays[k]) : traverseBvh<false>(bvh, rays[k]);
-                if (!h.found()) continue;
-                ++hits;
-                sum += h.t;
-                spheres += isSphere[h.shape];
-            }
-            blockSum[blk] = sum; blockHits[blk] = hits; blockSpheres[blk] = spheres;
-        }
-        cpu[t] = threadCpuSeconds() - c0;
-    };
-    auto t0 = std::chrono::steady_clock::now();
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (std::thread& th : pool) th.join();
-    BenchRun r;
-    r.seconds = secondsSince(t0);
-    r.cpuSeconds = *std::max_element(cpu.begin(), cpu.end());
-    for (int b = 0; b < kBlocks; ++b) { r.sumT += blockSum[b]; r.hits += blockHits[b]; r.sphereHits += blockSpheres[b]; }
-    return r;
-}
-
-inline double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-inline void runRayBenchmark(std::ostream& out, uint64_t seed, int n, size_t m, int reps) {
-    for (const BenchScene& b : {benchCornell(), benchStress(seed, n)}) {
-        std::vector<double> ms;
-        Bvh bvh;
-        for (int r = 0; r < reps; ++r) {
-            auto t0 = std::chrono::steady_clock::now();
-            bvh = buildBvh(b.shapes);
-            ms.push_back(1e3 * secondsSince(t0));
-        }
-        char line[512];
-        std::snprintf(line, sizeof line, "bdpt scene=%s kind=build threads=1 prims=%zu build_ms=%.3f build_ms_min=%.3f nodes=%zu\n",
-                      b.name.c_str(), b.shapes.size(), median(ms), *std::min_element(ms.begin(), ms.end()), bvh.nodes.size());
-        out << line << std::flush;
-        std::vector<Ray> primary = benchPrimaryRays(b, m), incoherent = benchIncoherentRays(b, seed, m);
-        struct Set { const char* kind; const std::vector<Ray>* rays; bool anyHit; };
-        for (Set set : {Set{"primary", &primary, false}, Set{"incoherent", &incoherent, false}, Set{"occluded", &incoherent, true}}) {
-            benchTrace(bvh, b.shapes, *set.rays, 2, set.anyHit);  // warm-up
-            for (int threads : {1, 2}) {
-                std::vector<double> mr, mc;
-                BenchRun last;
-                for (int r = 0; r < reps; ++r) {
-                    last = benchTrace(bvh, b.shapes, *set.rays, threads, set.anyHit);
-                    mr.push_back(set.rays->size() / last.seconds * 1e-6);
-                    mc.push_back(set.rays->size() / last.cpuSeconds * 1e-6);
-                }
-                std::snprintf(line, sizeof line,
-                              "bdpt scene=%s kind=%s threads=%d mrays=%.3f mrays_min=%.3f mrays_max=%.3f cpu_mrays=%.3f "
-                              "rays=%zu hits=%llu sum_t=%.9e sphere_hits=%llu\n",
-                              b.name.c_str(), set.kind, threads, median(mr), *std::min_element(mr.begin(), mr.end()),
-                              *std::max_element(mr.begin(), mr.end()), median(mc), set.rays->size(), last.hits,
-                              set.anyHit ? 0.0 : last.sumT, set.anyHit ? 0ULL : last.sphereHits);
-                out << line << std::flush;
-            }
-        }
-    }
-}
-
 // The slides' "Contributions of different paths" as a pyramid: row k = path length (segments),
 // column s = vertices from the light (t = k+1-s from the camera), one image per strategy p_{k,s}.
 inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
@@ -2478,11 +2301,6 @@ Speed against accuracy
   --average A.pfm B.pfm  write the mean of A and B to --out (and its PFM): a reference from two seeds
   --failure-table LOG.csv...  print the README's failure table (markdown) from such logs:
                     slope of log(rmse) against log(seconds), bias, fireflies, NaN count
-Benchmark (no scene file)
-  --bench-rays      trace the rays of ../shared/perf/README.md through the BVH and print Mrays/s
-                    in embree_bench's line format; with --bench-n N (shapes of each kind in the
-                    stress scene, default 100000), --bench-m M (rays per set, default 4194304),
-                    --bench-reps R (default 5), --seed S (default 1)
 Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene
 file or option, 3 abandoned by a second Ctrl-C (nothing written), 130 interrupted by Ctrl-C (the
 completed passes written).
@@ -2492,14 +2310,13 @@ struct CommandLine {
     std::string scenePath, out = "render.png";
     RenderOptions opt;
     int width = 0, height = 0;
-    bool help = false, benchRays = false, symmetricRefraction = false, noAdjointCorrection = false, fixedRayOffset = false;
-    int benchN = 100000, benchReps = 5, strategyLength = 5;
+    bool help = false, symmetricRefraction = false, noAdjointCorrection = false, fixedRayOffset = false;
+    int strategyLength = 5;
     std::string strategiesDir, refPath, logPath;
     std::vector<std::string> failureLogs;
     std::string pfmA, pfmB;  // --compare or --average: the two images
     bool average = false;    // --average: write their mean to out
     bool exposureGiven = false;  // else the scene's exposure directive sets it
-    size_t benchM = 4194304;
 };
 
 inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
@@ -2583,10 +2400,6 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             if (cl.failureLogs.empty()) fail("--failure-table needs log files");
             break;
         }
-        else if (a == "--bench-rays") cl.benchRays = true;
-        else if (a == "--bench-n") cl.benchN = int(integer(i, 1, 1e7));
-        else if (a == "--bench-m") cl.benchM = size_t(integer(i, 64, 1e9));
-        else if (a == "--bench-reps") cl.benchReps = int(integer(i, 1, 1000));
         else if (a == "--res") {
             std::string v = value(i);
             int w = 0, h = 0;
@@ -2600,8 +2413,8 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (cl.scenePath.empty()) cl.scenePath = a;
         else fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
     }
-    if (!cl.help && !cl.benchRays && cl.failureLogs.empty() && cl.pfmA.empty() && cl.scenePath.empty()) fail("no scene file given");
-    if (cl.help || cl.benchRays || !cl.failureLogs.empty()) return cl;
+    if (!cl.help && cl.failureLogs.empty() && cl.pfmA.empty() && cl.scenePath.empty()) fail("no scene file given");
+    if (cl.help || !cl.failureLogs.empty()) return cl;
     if (!hasExtension(cl.out, ".png")) fail("--out must name a .png file (the PFM goes beside it), got '" + printable(cl.out) + "'");
     if (!cl.logPath.empty() && !hasExtension(cl.logPath, ".csv")) fail("--log must name a .csv file, got '" + printable(cl.logPath) + "'");
     if (!cl.pfmA.empty()) return cl;
@@ -2721,7 +2534,6 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     try {
         cl = parseCommandLine(args);
         if (cl.help) { out << kUsage; return 0; }
-        if (cl.benchRays) { runRayBenchmark(out, cl.opt.seed, cl.benchN, cl.benchM, cl.benchReps); return 0; }
         if (!cl.failureLogs.empty()) return printFailureTable(cl.failureLogs, out, err);
         if (!cl.pfmA.empty()) {
             Image a, b;

@@ -1,27 +1,49 @@
 #!/usr/bin/env bash
-# make bench: our BVH against Embree on the same rays, interleaved runs, ratios from one session.
-# Two builds of ours: the portable one (SSE2, 4-wide nodes: ./bdpt) and build/bdpt-native
+# make bench: our BVH against Embree on the same rays (tests/bench.h), interleaved runs, ratios
+# from one session; then bdpt's cost per sample against nee's.
+# Two builds of ours: portable (SSE2, 4-wide nodes: build/bench_rays) and build/native/bench_rays
 # (-march=native, 8-wide AVX nodes), the fair match for Embree, which picks its CPU's widest SIMD.
+# Embree's half (build/embree_rays) exists where libembree-dev is installed; without it the
+# table has our numbers only.
 # Usage: tests/bench.sh [RUNS] [RAYS]   (defaults 3 runs of 4,194,304 rays per set)
 set -euo pipefail
+cd "$(dirname "$0")/.."
 runs=${1:-3}; rays=${2:-4194304}
-perf=../shared/perf
 out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
 for i in $(seq "$runs"); do
-  "$perf/run.sh" --rays "$rays" --reps 3 --build-reps 3 | grep -v '^info' > "$out/embree$i.txt"
-  ./bdpt --bench-rays --bench-m "$rays" --bench-reps 3 > "$out/bdpt$i.txt"
-  build/bdpt-native --bench-rays --bench-m "$rays" --bench-reps 3 | sed 's/^bdpt /bdpt-native /' > "$out/native$i.txt"
+  [ -x build/embree_rays ] && build/embree_rays --rays "$rays" --reps 3 > "$out/embree$i.txt"
+  build/bench_rays --rays "$rays" --reps 3 > "$out/bdpt$i.txt"
+  build/native/bench_rays --rays "$rays" --reps 3 | sed 's/^bdpt /bdpt-native /' > "$out/native$i.txt"
 done
-python3 "$perf/median.py" "$out"/embree*.txt "$out"/bdpt*.txt "$out"/native*.txt | tee "$out/median.txt"
-for ours in bdpt bdpt-native; do
-  echo "== ratios $ours / embree (median of $runs interleaved runs; cpu_mrays removes time slicing)"
-  awk -v ours="$ours" '{ k=$2" "$3" "$4; for (i=5;i<=NF;i++){split($i,a,"="); v[$1,k,a[1]]=a[2]} keys[k]=1 }
-     END { for (k in keys) if (v["embree",k,"mrays"] != "" && v[ours,k,"mrays"] != "")
-             printf "%-40s mrays %.2fx  cpu_mrays %.2fx  hits %s vs %s\n", k, v[ours,k,"mrays"]/v["embree",k,"mrays"],
-                    v[ours,k,"cpu_mrays"]/v["embree",k,"cpu_mrays"], v[ours,k,"hits"], v["embree",k,"hits"];
-           else if (v["embree",k,"build_ms"] != "" && v[ours,k,"build_ms"] != "")
-             printf "%-40s build %.1f ms vs %.1f ms\n", k, v[ours,k,"build_ms"], v["embree",k,"build_ms"] }' "$out/median.txt" | sort
-done
+python3 - "$out" <<'PY'
+import glob, statistics, sys
+# Median over the runs of every number of every line, keyed by program, scene, kind, threads;
+# the checksums must be the same in every run.
+values, checks = {}, {}
+for path in sorted(glob.glob(sys.argv[1] + "/*.txt")):
+    for line in open(path):
+        f = line.split()
+        key = tuple(f[:4])
+        kv = dict(x.split("=") for x in f[1:])
+        for k in ("mrays", "cpu_mrays", "build_ms"):
+            if k in kv: values.setdefault(key + (k,), []).append(float(kv[k]))
+        sums = (kv.get("hits"), kv.get("sum_t"))
+        if checks.setdefault(key, sums) != sums: sys.exit("bench: checksums differ between runs of %s" % " ".join(key))
+med = {k: statistics.median(v) for k, v in values.items()}
+rows = sorted({k[1:4] for k in med})
+for ours in ("bdpt", "bdpt-native"):
+    print("== %s / embree (median of interleaved runs; cpu_mrays does not see time slicing)" % ours)
+    for scene, kind, threads in rows:
+        e, o = ("embree", scene, kind, threads), (ours, scene, kind, threads)
+        if (o + ("mrays",)) in med:
+            ratio = lambda k: ("%.2fx" % (med[o + (k,)] / med[e + (k,)])) if (e + (k,)) in med else "-"
+            print("%-36s %7.2f Mrays/s  mrays %s  cpu_mrays %s  hits %s vs %s" % (" ".join(o[1:]), med[o + ("mrays",)], ratio("mrays"),
+                  ratio("cpu_mrays"), checks[o][0], checks.get(e, ("-",))[0]))
+        elif (o + ("build_ms",)) in med:
+            print("%-36s build %.1f ms vs %s ms" % (" ".join(o[1:]), med[o + ("build_ms",)],
+                  "%.1f" % med[e + ("build_ms",)] if (e + ("build_ms",)) in med else "-"))
+PY
 echo "== cost per sample, bdpt / nee on scenes/cornell.scene (32 spp, all threads, interleaved $runs times)"
 for i in $(seq "$runs"); do
   for m in nee bdpt; do
@@ -36,9 +58,7 @@ for line in open(sys.argv[1]):
     m, s, r = line.split()
     t.setdefault(m, []).append(float(s))
     rays[m] = float(r)
-print("nee  seconds:", t["nee"])
-print("bdpt seconds:", t["bdpt"])
-print("rays per sample: nee %.2f, bdpt %.2f (%.2fx)" % (rays["nee"], rays["bdpt"], rays["bdpt"] / rays["nee"]))
-print("median ratio bdpt/nee: %.2fx" % (statistics.median(t["bdpt"]) / statistics.median(t["nee"])))
+print("rays per sample: nee %.2f, bdpt %.2f (%.2fx); median seconds nee %.2f, bdpt %.2f: %.2fx" % (rays["nee"], rays["bdpt"],
+      rays["bdpt"] / rays["nee"], statistics.median(t["nee"]), statistics.median(t["bdpt"]),
+      statistics.median(t["bdpt"]) / statistics.median(t["nee"])))
 PY
-rm -rf "$out"

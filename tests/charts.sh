@@ -2,7 +2,7 @@
 # Speed against accuracy. Usage:
 #   tests/charts.sh refs      references of every scene (once; kept in scenes/refs/, reused)
 #   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts
-#                             in lecture_notes/figures/, and the failure table in the README
+#                             in lecture_notes/figures/, and the failure table in Appendix A of the notes
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time
 #   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
 #   tests/charts.sh tables    the failure table and the reference check from the runs' logs
@@ -16,6 +16,7 @@ RUN_SECONDS=${RUN_SECONDS:-4}     # per method and scene (90 runs: 6 minutes)
 ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refraction shading-normals sds sds-point"
 SCENES=${SCENES:-$ALL_SCENES}
 FIG=lecture_notes/figures
+RECORD=lecture_notes/appendix-a-speed-and-accuracy.md  # where the generated tables go
 LOGS=build/charts
 mkdir -p "$FIG" "$LOGS/refs" scenes/refs
 
@@ -33,6 +34,10 @@ lineStyle() {
     bdpt-max) echo "lc rgb '#d55e00' dt 3" ;;    bdpt-uniform) echo "lc rgb '#d55e00' dt 4" ;;
     *) echo "lc rgb '#999999' dt 1" ;;
   esac
+}
+
+styles() {  # every method's chart style: tests/test_notes.cpp checks that no two are alike
+  methods cornell | while IFS='|' read -r label opts; do echo "$label $(lineStyle "$label")"; done
 }
 
 # The ten runs of every scene: label|options
@@ -131,12 +136,12 @@ tables() {
   local logs=()
   for s in $SCENES; do while IFS='|' read -r label opts; do logs+=("$LOGS/$s-$label.csv"); done < <(methods "$s"); done
   ./bdpt --failure-table "${logs[@]}" > "$FIG/failure-table.md"
-  # Splice the table into the README between its markers.
+  # Splice the table into the record (Appendix A) between its markers.
   awk -v table="$FIG/failure-table.md" '
     /<!-- failure-table:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
     /<!-- failure-table:end -->/ { skip = 0 }
-    !skip' README.md > README.md.tmp && mv README.md.tmp README.md
-  echo "failure table: $FIG/failure-table.md (and README.md)"
+    !skip' "$RECORD" > "$RECORD.tmp" && mv "$RECORD.tmp" "$RECORD"
+  echo "failure table: $FIG/failure-table.md (and $RECORD)"
   refcheck
 }
 
@@ -158,8 +163,8 @@ refcheck() {
   awk -v table="$FIG/reference-check.md" '
     /<!-- reference-check:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
     /<!-- reference-check:end -->/ { skip = 0 }
-    !skip' README.md > README.md.tmp && mv README.md.tmp README.md
-  echo "reference check: $FIG/reference-check.md (and README.md)"
+    !skip' "$RECORD" > "$RECORD.tmp" && mv "$RECORD.tmp" "$RECORD"
+  echo "reference check: $FIG/reference-check.md (and $RECORD)"
 }
 
 figures() {

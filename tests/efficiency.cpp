@@ -13,8 +13,7 @@
 // --alternatives adds the Russian roulette variants (the measurements behind the choice in
 // bdpt's banner); --only keeps the methods whose label contains TEXT (and nee --mis,
 // the baseline).
-#define BDPT_NO_MAIN
-#include "bdpt.cpp"
+#include "bench.h"
 
 struct Variant {
     std::string label;

@@ -103,3 +103,16 @@ TEST_CASE("every make target and every figure the notes mention exists") {
     CHECK(targets >= 3);
     CHECK(images >= 20);
 }
+
+TEST_CASE("every method has its own colour and line style in the charts, the same in every chart") {
+    std::system("bash tests/charts.sh styles > build/tmp_styles.txt");
+    std::istringstream in(slurp("build/tmp_styles.txt"));
+    std::set<std::string> styles, labels;
+    for (std::string line; std::getline(in, line);) {
+        labels.insert(line.substr(0, line.find(' ')));
+        styles.insert(line.substr(line.find(' ') + 1));
+        CHECK(line.find("#999999") == std::string::npos);  // the fallback: a method without its own style
+    }
+    CHECK(labels.size() == 10);
+    CHECK(styles.size() == labels.size());
+}
