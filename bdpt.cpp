@@ -10,6 +10,7 @@
 // ============================================================================================
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <csignal>
