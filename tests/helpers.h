@@ -5,6 +5,9 @@
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <signal.h>
 
 inline Scene sceneAt(const std::string& file, int width, int height) {
     Scene s = loadScene(file);
@@ -123,4 +126,42 @@ inline Material makeMaterial(Material::Type type, float albedo, float parameter 
     if (type == Material::Glossy) m.exponent = parameter;
     if (type == Material::Glass) m.ior = parameter;
     return m;
+}
+
+// Runs ./bdpt (the real program, its main and signal handler) with args, sends SIGINT after
+// firstAfter seconds and, if secondAfter > 0, again that much later; returns the exit status and
+// what it printed on stderr.
+struct InterruptedRun {
+    int status;
+    std::string err;
+};
+inline InterruptedRun interruptRun(const std::vector<std::string>& args, double firstAfter, double secondAfter) {
+    int pipeErr[2];
+    if (pipe(pipeErr) != 0) return {-1, ""};
+    pid_t pid = fork();
+    if (pid == 0) {
+        std::vector<char*> argv;
+        std::string exe = "./bdpt";
+        argv.push_back(&exe[0]);
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        dup2(pipeErr[1], 2);
+        close(pipeErr[0]);
+        execv(argv[0], argv.data());
+        _exit(127);
+    }
+    close(pipeErr[1]);
+    usleep(useconds_t(firstAfter * 1e6));
+    kill(pid, SIGINT);
+    if (secondAfter > 0) {
+        usleep(useconds_t(secondAfter * 1e6));
+        kill(pid, SIGINT);
+    }
+    std::string err;
+    char buffer[512];
+    for (ssize_t n; (n = read(pipeErr[0], buffer, sizeof buffer)) > 0;) err.append(buffer, size_t(n));
+    close(pipeErr[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, err};
 }
