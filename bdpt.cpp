@@ -4,7 +4,8 @@
 //
 // Read it top to bottom with the slides open:
 //   1 math & random numbers   2 geometry            3 BVH                 4 materials (BSDFs)
-//   5 lights                  6 camera              7 scene file          8 integrators: pt, nee
+//   5 lights                  6 camera              7 scene file
+//   8 integrators: pt, nee, lt, ir, bdpt, and the slides' "later", vcm
 //   9 film & rendering loop  10 command line
 // Units: radiance L, intensity I, power Phi, importance W_e. Directions point away from surfaces.
 // ============================================================================================
@@ -1172,11 +1173,12 @@ inline Scene loadScene(const std::string& path) {
 }
 
 // == 8. Integrators ============================================================================
-// Slides "Path sampling techniques" and "Results from different techniques": panels (a) to (f).
-// Every method is one function of the same shape over the shared pieces above, so that a diff of
-// two methods shows how they differ. Paths are counted in bounces (scattering vertices): a path
-// of k segments has k-1 bounces, and --maxdepth D keeps paths with at most D bounces.
-enum class Method { PT, NEE, LT, IR, BDPT };
+// Slides "Path sampling techniques" and "Results from different techniques": panels (a) to (f),
+// then (g) "Vertex Connection and Merging (VCM, later)". Every method is one function of the
+// same shape over the shared pieces above, so that a diff of two methods shows how they differ.
+// Paths are counted in bounces (scattering vertices): a path of k segments has k-1 bounces, and
+// --maxdepth D keeps paths with at most D bounces.
+enum class Method { PT, NEE, LT, IR, BDPT, VCM };
 // How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
 // Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
 // the depth limit. bdpt's banner says which it uses and why.
@@ -1198,7 +1200,9 @@ struct RenderOptions {
     int vplPaths = 16;         // ir: light paths traced per pass, each leaving VPLs
     float clamp = 0;           // ir: > 0 bounds the geometry term G at this value
     Heuristic heuristic{};     // bdpt: how strategies are weighted (balance)
-    int strategyMaxLength = 0; // bdpt: > 0 records per-strategy images up to this path length
+    int strategyMaxLength = 0; // bdpt, vcm: > 0 records per-strategy images up to this path length
+    float mergeRadius = -1;    // vcm: r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
+    float alpha = 0.75f;       // vcm: r_i = r_0 i^((alpha-1)/2)
     // Called after each pass with that pass's image and the non-finite samples dropped so far.
     std::function<void(int pass, const std::vector<Vec3>& passImage, long long nonFinite)> onPass;
 };
@@ -1640,6 +1644,7 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 // connection the walk is the same for every connection, so each subpath sums it once per vertex,
 //     misSum_i = ratio_i^e ([strategy i able] + misSum_{i-1}),  e = 1 balance, 2 power, 0 uniform,
 // and a weight costs O(1) instead of O(k). The max heuristic, whose ties need every r_i, walks on.
+// (vcm, section (g), adds one term per vertex to the walk and the sums: the merge there.)
 // Delta events (mirror, glass, point light) are stored as density 1 (the same delta appears in
 // every strategy's density and cancels), and a strategy that would have to connect at a delta
 // vertex or hit a point light is skipped: its density is 0 (pitfall 4). The walk is in double:
@@ -1662,12 +1667,28 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 // limit); even no roulette at all lowers it by a quarter only, at 1.4x the cost.
 enum class Heuristic { Balance, Power, Max, Uniform };
 
+// A subpath, or the first vertices of one: bdpt's own vectors, and vcm's light subpaths, which
+// lie one after another in arrays shared by the whole pass.
+struct Subpath {
+    const PathVertex* v = nullptr;
+    int n = 0;
+    Subpath() = default;
+    Subpath(const PathVertex* first, int count) : v(first), n(count) {}
+    Subpath(const std::vector<PathVertex>& path) : v(path.data()), n(int(path.size())) {}
+    const PathVertex& operator[](int i) const { return v[i]; }
+    int size() const { return n; }
+};
+
 // A connection at vertex i is possible if neither i nor the vertex before it is a delta event: a
 // camera path never starts at i = 0 (no t = 0 strategy), a light path there unless from a point.
-inline bool strategyAble(const std::vector<PathVertex>& path, int i) {
+inline bool strategyAble(Subpath path, int i) {
     if (i == 0) return path[0].type == PathVertex::Light && !path[0].deltaPosition;
     return !path[i].delta && !path[i - 1].delta;
 }
+
+// A merge at vertex i (vcm below): a surface a light subpath can land on and stop, so neither
+// the light itself nor the pinhole nor a delta event.
+inline bool mergeAble(const PathVertex& v) { return v.type == PathVertex::Surface && !v.delta; }
 
 inline double misPower(Heuristic heuristic, double r) {  // what each r_i adds to the sum
     return heuristic == Heuristic::Power ? r * r : heuristic == Heuristic::Uniform ? 1.0 : r;
@@ -1681,68 +1702,112 @@ inline double densityRatio(double pdfRev, double pdfFwd) { return pdfFwd > 0 ? p
 // overflowed sum (0 x inf): every strategy beyond a density of 0 shares that factor.
 inline double scaledSum(double rPower, double sum) { return rPower == 0 || sum == 0 ? 0 : rPower * sum; }
 
+// What the strategies that move vertex i (and those beyond it) add to the walk, before the
+// factor ratio_i^e: [strategy i able] + [merge at i] (mergeEta pdfFwd_i)^e + misSum_{i-1}.
+// vcm's merges add the middle term (mergeEta = pi r^2 N_light, its banner: why); bdpt passes 0.
+inline double misTerms(Heuristic heuristic, Subpath path, int i, double mergeEta) {
+    double merge = mergeEta > 0 && mergeAble(path[i]) ? misPower(heuristic, mergeEta * path[i].pdfFwd) : 0;
+    return strategyAble(path, i) + merge + (i > 0 ? path[i - 1].misSum : 0);
+}
+
 // misSum_i of every vertex of a finished subpath (its pdfRev all known).
-inline void cacheMisSums(Heuristic heuristic, std::vector<PathVertex>& path) {
-    double below = 0;
+inline void cacheMisSums(Heuristic heuristic, std::vector<PathVertex>& path, double mergeEta = 0) {
     for (size_t i = 0; i < path.size(); ++i) {
         PathVertex& v = path[i];
-        v.misSum = scaledSum(misPower(heuristic, densityRatio(v.pdfRev, v.pdfFwd)), strategyAble(path, int(i)) + below);
-        below = v.misSum;
+        v.misSum = scaledSum(misPower(heuristic, densityRatio(v.pdfRev, v.pdfFwd)), misTerms(heuristic, path, int(i), mergeEta));
     }
 }
 
-// w_{s,t} for the path that strategy (s,t) made from light[0..s-1] and camera[0..t-1], joined by
-// the connection c (unused for s = 0), after cacheMisSums on both subpaths. The connection
-// changes the reverse densities of the (up to) four vertices next to it: those are computed
-// here and override the stored ones during the walk.
-// The light seen directly (k = 1) is left to s = 0, as in pbrt: (1,1) gets weight 0, so a point
-// light stays invisible to the camera in bdpt as in pt and nee (lt shows it as one bright pixel).
-inline float misWeight(const Scene& scene, const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
-                       int t, Heuristic heuristic, const Connection& c) {
-    if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
-    const PathVertex *qs = s > 0 ? &light[s - 1] : nullptr, *pt = &camera[t - 1];
-    const PathVertex *qsMinus = s > 1 ? &light[s - 2] : nullptr, *ptMinus = t > 1 ? &camera[t - 2] : nullptr;
+// Where the two subpaths meet, the reverse densities of the (up to) four vertices next to the
+// junction are not the stored ones: pt = camera[t-1], qs = light[s-1] and the one before each.
+struct Junction {
     double ptRev = 0, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
+    bool lightEndDelta = false;  // a merge: light[s-1] sampled its way to the merged vertex
+    // A merge may bring the light side's walk along: light[s-1]'s pdfFwd and misTerms, so that it
+    // reads no vertex of its light subpath (lightTerms < 0: walk the subpath).
+    double qsPdfFwd = 0, lightTerms = -1;
+};
+
+// The junction of strategy (s,t): the connection c joins qs and pt (unused for s = 0).
+inline Junction connectionJunction(const Scene& scene, Subpath light, int s, Subpath camera, int t, const Connection& c) {
+    Junction j;
+    const PathVertex &pt = camera[t - 1], *ptMinus = t > 1 ? &camera[t - 2] : nullptr;
     if (s > 0) {  // each density sampled at a connection vertex carries that vertex's continuation
-        ptRev = t > 1 ? toArea(c.pdfY * qs->continuation, *pt, c.w, c.dist2) : 0;  // the pinhole is never sampled (no t = 0)
-        qsRev = toArea(c.pdfX * pt->continuation, *qs, c.w, c.dist2);
-        if (qsMinus) qsMinusRev = toArea(c.pdfYReverse * qs->continuation, *qsMinus, qs->wo, qs->prevDist2);
-        if (ptMinus) ptMinusRev = toArea(c.pdfXReverse * pt->continuation, *ptMinus, pt->wo, pt->prevDist2);
+        const PathVertex &qs = light[s - 1], *qsMinus = s > 1 ? &light[s - 2] : nullptr;
+        j.ptRev = t > 1 ? toArea(c.pdfY * qs.continuation, pt, c.w, c.dist2) : 0;  // the pinhole is never sampled (no t = 0)
+        j.qsRev = toArea(c.pdfX * pt.continuation, qs, c.w, c.dist2);
+        if (qsMinus) j.qsMinusRev = toArea(c.pdfYReverse * qs.continuation, *qsMinus, qs.wo, qs.prevDist2);
+        if (ptMinus) j.ptMinusRev = toArea(c.pdfXReverse * pt.continuation, *ptMinus, pt.wo, pt.prevDist2);
     } else {  // pt lies on an emitter: how a light path would have started there
-        ptRev = pdfLightPoint(scene, pt->sp.shape);
-        if (ptMinus) ptMinusRev = toArea(pdfEmissionDirection(*pt, pt->wo), *ptMinus, pt->wo, pt->prevDist2);
+        j.ptRev = pdfLightPoint(scene, pt.sp.shape);
+        if (ptMinus) j.ptMinusRev = toArea(pdfEmissionDirection(pt, pt.wo), *ptMinus, pt.wo, pt.prevDist2);
     }
-    auto cameraRev = [&](int i) { return i == t - 1 ? ptRev : i == t - 2 ? ptMinusRev : camera[i].pdfRev; };
-    auto lightRev = [&](int i) { return i == s - 1 ? qsRev : i == s - 2 ? qsMinusRev : light[i].pdfRev; };
-    // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
-    auto cameraDelta = [&](int i) { return i != t - 1 && camera[i].delta; };
-    auto lightDelta = [&](int i) { return i != s - 1 && light[i].delta; };
-    const bool cached = heuristic != Heuristic::Max;
+    return j;
+}
+
+// For the path light[0..s-1] + camera[t-1..0] met at `j`: the sum over every other strategy i
+// able to make it of misPower(p_i / p_ref), where p_ref = reference * p_{s,t} (the density of
+// the strategy being weighted), and for the max heuristic how many are larger or equal.
+// Connections: the strategy that moves vertex x to the other side multiplies p by
+// pdfRev(x)/pdfFwd(x). Merges (mergeEta > 0, vcm): the merge at x, once x has moved to the camera
+// side (light side), has the density p * mergeEta * pdfFwd(x) with its own subpath's pdfFwd.
+struct MisSum {
     double sum = 0;
     int larger = 0, equal = 0;
+};
+
+inline MisSum misWalk(Subpath light, int s, Subpath camera, int t, Heuristic heuristic, double mergeEta, const Junction& j,
+                      double reference = 1) {
+    auto cameraRev = [&](int i) { return i == t - 1 ? j.ptRev : i == t - 2 ? j.ptMinusRev : camera[i].pdfRev; };
+    auto lightRev = [&](int i) { return i == s - 1 ? j.qsRev : i == s - 2 ? j.qsMinusRev : light[i].pdfRev; };
+    // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
+    auto cameraDelta = [&](int i) { return i != t - 1 && camera[i].delta; };
+    auto lightDelta = [&](int i) { return (i != s - 1 || j.lightEndDelta) && light[i].delta; };
+    const bool cached = heuristic != Heuristic::Max;
+    MisSum m;
     // The maximum heuristic needs ties: two strategies of equal density (common in symmetric
     // scenes) computed in different orders can each see the other as larger by a rounding error,
     // and both would get weight 0. Within 1e-4 they count as equal and share the path.
     constexpr double kTie = 1e-4;
-    auto add = [&](double r) {  // r = p_i / p_s of one other strategy i
-        sum += misPower(heuristic, r);
-        larger += r > 1 + kTie;
-        equal += std::fabs(r - 1) <= kTie;
+    auto add = [&](double r) {  // r = p_i / p_{s,t} of one other strategy i
+        m.sum += misPower(heuristic, r / reference);
+        m.larger += r > reference * (1 + kTie);
+        m.equal += std::fabs(r - reference) <= reference * kTie;
     };
+    auto addCached = [&](double r, double misSum) { m.sum += scaledSum(misPower(heuristic, r / reference), misSum); };
     double r = 1;
     for (int i = t - 1; i > 0; --i) {  // more light vertices: strategies (s+1, t-1), ...
-        if (cached && i < t - 2) { sum += scaledSum(misPower(heuristic, r), camera[i].misSum); break; }
+        if (cached && i < t - 2) { addCached(r, camera[i].misSum); break; }
         r *= densityRatio(cameraRev(i), camera[i].pdfFwd);
         if (!cameraDelta(i) && !cameraDelta(i - 1)) add(r);
+        bool becomesLightVertex0 = s == 0 && i == t - 1;  // the light's own vertex is not merged
+        if (mergeEta > 0 && !cameraDelta(i) && !becomesLightVertex0) add(r * mergeEta * camera[i].pdfFwd);
+    }
+    if (cached && j.lightTerms >= 0) {
+        m.sum += scaledSum(misPower(heuristic, densityRatio(j.qsRev, j.qsPdfFwd) / reference), j.lightTerms);
+        return m;
     }
     r = 1;
     for (int i = s - 1; i >= 0; --i) {  // more camera vertices: strategies (s-1, t+1), ...
-        if (cached && i < s - 2) { sum += scaledSum(misPower(heuristic, r), light[i].misSum); break; }
+        if (cached && i < s - 2) { addCached(r, light[i].misSum); break; }
         r *= densityRatio(lightRev(i), light[i].pdfFwd);
         bool deltaBefore = i > 0 ? lightDelta(i - 1) : light[0].deltaPosition;
         if (!lightDelta(i) && !deltaBefore) add(r);
+        if (mergeEta > 0 && i > 0 && !lightDelta(i)) add(r * mergeEta * light[i].pdfFwd);
     }
-    return heuristic != Heuristic::Max ? float(1 / (1 + sum)) : larger ? 0 : 1.0f / (1 + equal);
+    return m;
+}
+
+// w_{s,t} for the path that strategy (s,t) made from light[0..s-1] and camera[0..t-1], joined by
+// the connection c (unused for s = 0), after cacheMisSums on both subpaths (with the same
+// mergeEta: vcm's; 0 for bdpt).
+// The light seen directly (k = 1) is left to s = 0, as in pbrt: (1,1) gets weight 0, so a point
+// light stays invisible to the camera in bdpt as in pt and nee (lt shows it as one bright pixel).
+inline float misWeight(const Scene& scene, Subpath light, int s, Subpath camera, int t, Heuristic heuristic, const Connection& c,
+                       double mergeEta = 0) {
+    if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
+    MisSum m = misWalk(light, s, camera, t, heuristic, mergeEta, connectionJunction(scene, light, s, camera, t, c));
+    return heuristic != Heuristic::Max ? float(1 / (1 + m.sum)) : m.larger ? 0 : 1.0f / (1 + m.equal);
 }
 
 // The unweighted contribution of strategy (s,t) and, for s > 0, its connection c; for t = 1 also
@@ -1750,8 +1815,7 @@ inline float misWeight(const Scene& scene, const std::vector<PathVertex>& light,
 // power and area, exactly next event's light sample, so s = 1 is next-event estimation. A fresh
 // light point for every camera vertex instead (pbrt, SmallVCM) changed the error by 1.5% at most
 // and cost 5-13% more time (`make efficiency`, the four scenes): one y_0 serves them all.
-inline Vec3 connectStrategy(const Scene& scene, const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
-                            int t, Connection& c, int& pixel) {
+inline Vec3 connectStrategy(const Scene& scene, Subpath light, int s, Subpath camera, int t, Connection& c, int& pixel) {
     const PathVertex& pt = camera[t - 1];
     if (s == 0) {  // the camera subpath's last vertex is on an emitter
         if (pt.type != PathVertex::Surface) return Vec3(0);
@@ -1766,23 +1830,28 @@ inline Vec3 connectStrategy(const Scene& scene, const std::vector<PathVertex>& l
     return isBlack(contribution) || !mutuallyVisible(scene, qs, pt) ? Vec3(0) : contribution;
 }
 
-// Per-strategy images (--strategies): strategy (s,t) with path length k = s+t-1 <= maxLength.
+// Per-strategy images (--strategies): strategy (s,t) with path length k = s+t-1 <= maxLength,
+// then (vcm) one image per path length of all its merges.
 inline int strategyIndex(int s, int t) {  // rows by k, s = 0..k within a row
     int k = s + t - 1;
     return k * (k + 1) / 2 - 1 + s;
 }
+inline int mergeImageIndex(int k, int maxLength) { return maxLength * (maxLength + 3) / 2 + k - 1; }
 
-inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, int y, Rng& rng, RowOutput& out) {
-    thread_local std::vector<PathVertex> camera, light;
-    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
-    cameraSubpath(scene, opt, filmX, filmY, rng, camera);
-    lightSubpath(scene, opt, rng, light);
-    cacheMisSums(opt.heuristic, camera);
-    cacheMisSums(opt.heuristic, light);
+// The light subpath of pixel `pixel` in pass `pass`: a stream of its own, apart from the pixel's
+// camera stream, so that vcm, which traces all light subpaths of a pass first, makes the same
+// ones as bdpt (--radius 0 gives bdpt's image bit for bit).
+inline Rng lightPathRng(const RenderOptions& opt, int pixel, int pass) {
+    return makeRng(opt.seed ^ 0x3c6ef372fe94f82bULL, uint64_t(pixel), uint64_t(pass));
+}
+
+// Every connection (s,t) of one camera subpath with one light subpath, MIS-weighted: bdpt's
+// estimate, and the connection half of vcm's (whose merges, mergeEta > 0, share the weights).
+inline Vec3 connectSubpaths(const Scene& scene, const RenderOptions& opt, Subpath light, const std::vector<PathVertex>& camera,
+                            int here, double mergeEta, RowOutput& out) {
     Vec3 L(0);
-    int here = y * scene.camera.width + x;
     for (int t = 1; t <= int(camera.size()); ++t)
-        for (int s = 0; s <= int(light.size()); ++s) {
+        for (int s = 0; s <= light.size(); ++s) {
             int bounces = s + t - 2;
             if (bounces < 0 || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
             bool record = opt.strategyMaxLength > 0 && s + t - 1 <= opt.strategyMaxLength;
@@ -1791,7 +1860,7 @@ inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, in
             Connection connection;
             Vec3 c = connectStrategy(scene, light, s, camera, t, connection, pixel);
             if (isBlack(c)) continue;
-            float w = misWeight(scene, light, s, camera, t, opt.heuristic, connection);
+            float w = misWeight(scene, light, s, camera, t, opt.heuristic, connection, mergeEta);
             if (t == 1) out.splats.push_back({pixel, c * w});
             else L += c * w;
             if (record) {
@@ -1803,15 +1872,314 @@ inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, in
     return L;
 }
 
-// What every method shares for one pass, computed before the pixels (ir's VPLs).
-struct PassData {
-    std::vector<Vpl> vpls;
+inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, int y, int pass, Rng& rng, RowOutput& out) {
+    thread_local std::vector<PathVertex> camera, light;
+    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
+    cameraSubpath(scene, opt, filmX, filmY, rng, camera);
+    int here = y * scene.camera.width + x;
+    Rng lightRng = lightPathRng(opt, here, pass);
+    lightSubpath(scene, opt, lightRng, light);
+    cacheMisSums(opt.heuristic, camera);
+    cacheMisSums(opt.heuristic, light);
+    return connectSubpaths(scene, opt, light, camera, here, 0, out);
+}
+
+// -- (g) vcm: "Vertex Connection and Merging (VCM, later)" (Georgiev, Krivanek, Davidovic and
+// Slusallek 2012; Hachisuka, Pantaleoni and Jensen 2012). Panel (f)'s limit: a connection needs
+// two non-specular vertices side by side, so a path L S D S E (a caustic on the floor seen in a
+// mirror, or a point light in a glass ball seen through glass) has no strategy at all; only s = 0
+// remains when the light has area, and nothing for a point light. Merging adds one: a light
+// subpath that lands at y within radius r of a camera vertex x counts as if it had reached x,
+//     C_merge = beta_camera(x) f(x) beta_light(y) / (pi r^2 N),
+// a density estimate over the N = width x height light subpaths of the pass (a disk kernel,
+// photon mapping's). Its density, relative to the connection strategy that samples x from the
+// camera, is that of landing on the disk:
+//     p_merge(x) = p_{s,t} * pi r^2 N * p_light(x)      (p_light(x): the light side's pdfFwd of x)
+// so in the ratio walk of misWeight a merge is one more term per non-specular vertex, and
+// mergeEta = pi r^2 N the only new number. Every heuristic applies as to connections (the max
+// heuristic, uniform: unchanged definitions over the larger set of strategies).
+// The kernel makes the merge biased: it blurs over the disk, so a pass's estimate is too smooth
+// by about r. Each pass shrinks the radius, r_i = r_0 i^((alpha-1)/2) (Knaus and Zwicker 2011's
+// progressive photon mapping), slowly enough (alpha in (0,1)) that the variance, which grows like
+// 1/r^2, is still averaged away: bias and variance both vanish as passes go on (consistent), and
+// the error falls more slowly than -1/2 in log(error) against log(time).
+// Per pass: trace every pixel's light subpath (the same as bdpt's), keep them all, put their
+// mergeable vertices in a hash grid; then every camera subpath makes bdpt's connections with its
+// own pixel's light subpath, and at each of its non-specular vertices merges with the vertices
+// in the grid within r.
+
+// A uniform grid of cells of side 2r, hashed into as many buckets as points: a query sphere of
+// radius r then overlaps at most 2 cells per axis, 8 in all. Two cells may share a bucket; a
+// bucket is visited once. The points are kept in bucket order, so that a query reads each
+// bucket's points one after another (the queries are what merging costs: memory, not math).
+struct HashGrid {
+    float radius = 0;
+    std::vector<uint32_t> bucketStart;  // bucket b holds points[bucketStart[b] .. bucketStart[b+1])
+    std::vector<Vec3> points;           // in bucket order
+    std::vector<uint32_t> entries;      // points[e] is the caller's point entries[e]
 };
 
-inline PassData preparePass(const Scene& scene, const RenderOptions& opt, int pass) {
-    PassData data;
-    if (opt.method == Method::IR) data.vpls = traceVpls(scene, opt, pass);
-    return data;
+inline uint32_t gridBucket(const HashGrid& g, Vec3 p, int dx, int dy, int dz) {
+    float cell = 2 * g.radius;
+    auto coordinate = [&](float x, int d) { return uint32_t(int64_t(std::floor(x / cell)) + d); };
+    uint32_t h = coordinate(p.x, dx) * 73856093u ^ coordinate(p.y, dy) * 19349663u ^ coordinate(p.z, dz) * 83492791u;
+    return h % uint32_t(g.bucketStart.size() - 1);
+}
+
+inline void buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius) {
+    g.radius = radius;
+    g.bucketStart.assign(std::max<size_t>(1, points.size()) + 1, 0);
+    g.entries.resize(points.size());
+    g.points.resize(points.size());
+    std::vector<uint32_t> bucket(points.size());
+    for (size_t i = 0; i < points.size(); ++i) ++g.bucketStart[(bucket[i] = gridBucket(g, points[i], 0, 0, 0)) + 1];
+    for (size_t b = 1; b < g.bucketStart.size(); ++b) g.bucketStart[b] += g.bucketStart[b - 1];
+    std::vector<uint32_t> fill(g.bucketStart.begin(), g.bucketStart.end() - 1);
+    for (size_t i = 0; i < points.size(); ++i) {
+        uint32_t e = fill[bucket[i]]++;
+        g.entries[e] = uint32_t(i);
+        g.points[e] = points[i];
+    }
+}
+
+// Calls visit(e) for every point e (in bucket order) within the grid's radius of p, in a fixed
+// order.
+template <class Visit>
+inline void forEachNeighbour(const HashGrid& g, Vec3 p, Visit&& visit) {
+    if (g.points.empty()) return;
+    float cell = 2 * g.radius, r2 = g.radius * g.radius;
+    // The cells of p - r and p + r: the same or the next one on each axis.
+    auto next = [&](float x) { return int(std::floor((x + g.radius) / cell) - std::floor((x - g.radius) / cell)); };
+    Vec3 low = p - Vec3(g.radius);
+    int nx = next(p.x), ny = next(p.y), nz = next(p.z);
+    uint32_t buckets[27], begin[27], end[27];  // 8 unless a division rounds p - r and p + r three cells apart
+    int count = 0;
+    for (int dz = 0; dz <= nz; ++dz)
+        for (int dy = 0; dy <= ny; ++dy)
+            for (int dx = 0; dx <= nx; ++dx) {
+                uint32_t b = gridBucket(g, low, dx, dy, dz);
+                if (std::find(buckets, buckets + count, b) != buckets + count) continue;
+                buckets[count++] = b;
+                __builtin_prefetch(&g.bucketStart[b]);
+            }
+    // Each bucket is two cache misses (its start, its first point): asked for all at once, they
+    // overlap, and the query costs about two misses instead of sixteen.
+    for (int i = 0; i < count; ++i) {
+        begin[i] = g.bucketStart[buckets[i]];
+        end[i] = g.bucketStart[buckets[i] + 1];
+        if (begin[i] < end[i]) __builtin_prefetch(&g.points[begin[i]]);
+    }
+    for (int i = 0; i < count; ++i)
+        for (uint32_t e = begin[i]; e < end[i]; ++e) {
+            Vec3 d = g.points[e] - p;
+            if (dot(d, d) <= r2) visit(e);
+        }
+}
+
+// The pass's light subpaths: pixel p's is paths[p], its vertices stored row by row (the
+// connections need them whole). The mergeable ones also go into the grid, as records.
+struct VcmPass {
+    float radius = 0;
+    double mergeEta = 0;                  // pi r^2 N_light; 0: no merging (vcm is bdpt)
+    std::vector<std::vector<PathVertex>> rowVertices;
+    std::vector<Subpath> paths;
+    // A mergeable light vertex y = light[index] of paths[path] with what its merges need of the
+    // light subpath (qs = light[index - 1]), so that a merge reads this record alone.
+    struct Stored {
+        Vec3 wo, beta;                    // y's
+        double pdfFwd;                    // y's
+        double qsPdfFwd, qsLightTerms;    // qs's pdfFwd and misTerms
+        double qsAreaFactor;              // cos at qs / |qs - y|^2: a solid-angle density at y -> area at qs
+        uint32_t path, index;
+        bool qsDelta;
+    };
+    std::vector<Stored> stored;           // in the grid's bucket order
+    std::vector<Vec3> storedPoints;       // (only while the grid is built)
+    HashGrid grid;
+    size_t bytes() const {  // what the light vertices and the grid take
+        size_t b = 0;
+        for (const std::vector<PathVertex>& row : rowVertices) b += row.capacity() * sizeof(PathVertex);
+        return b + paths.capacity() * sizeof(Subpath) + stored.capacity() * sizeof(Stored) + grid.points.capacity() * sizeof(Vec3) +
+               (grid.bucketStart.capacity() + grid.entries.capacity()) * sizeof(uint32_t);
+    }
+};
+
+// The record of vertex i of the light subpath `light` (cacheMisSums done, with mergeEta), which is
+// the pass's subpath number `path`.
+inline VcmPass::Stored storedVertex(Heuristic heuristic, Subpath light, int i, double mergeEta, uint32_t path) {
+    const PathVertex &y = light[i], &qs = light[i - 1];
+    return {y.wo, y.beta, y.pdfFwd, qs.pdfFwd, misTerms(heuristic, light, i - 1, mergeEta), cosAt(qs, y.wo) / double(y.prevDist2),
+            path, uint32_t(i), qs.delta};
+}
+
+// r_0 when --radius is not given: one pixel's footprint where the central camera ray meets the
+// first non-specular surface (straight through glass and mirrors: a glass ball around the
+// camera is not the scene), d * 2 tan(fov/2) / height. A merge then blurs by about a pixel in
+// the first pass, less later. Measured at 64x64 and equal time (4 s), RMSE for r_0 = half, one,
+// two footprints: sds-ior1 0.030, 0.018, 0.015; cornell 0.0117, 0.0113, 0.0126; a pass cost
+// 1.4x, 1.5x, 2.1x bdpt's on cornell (256x256). One footprint, as SmallVCM's default (0.003
+// scene radii at 512x512) comes to on these scenes.
+inline float defaultMergeRadius(const Scene& scene) {
+    const Camera& cam = scene.camera;
+    Ray ray = cameraRay(cam, 0.5f * cam.width, 0.5f * cam.height);
+    float distance = 0;
+    for (int crossed = 0; crossed < 16; ++crossed) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        distance += hit.t;
+        SurfacePoint sp = surfaceAt(scene, ray, hit);
+        if (!isSpecular(scene.materials[scene.shapes[sp.shape].material])) break;
+        ray = spawnRay(sp, ray.d);
+    }
+    return (distance > 0 ? distance : 1) * 2 * cam.tanHalfFov / cam.height;
+}
+
+inline float mergeRadius(const Scene& scene, const RenderOptions& opt, int pass) {  // r_i = r_0 i^((alpha-1)/2), i = pass + 1
+    float r0 = opt.mergeRadius >= 0 ? opt.mergeRadius : defaultMergeRadius(scene);
+    return r0 * std::pow(float(pass + 1), (opt.alpha - 1) / 2);
+}
+
+// Runs body(row) for rows 0..rows-1 on `threads` threads; returns the rays they traced.
+inline RayCount parallelRows(int rows, int threads, const std::function<void(int)>& body) {
+    std::atomic<int> nextRow{0};
+    std::atomic<long long> closest{0}, shadow{0};
+    auto worker = [&] {
+        RayCount before = gRaysTraced;
+        for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y);
+        closest += gRaysTraced.closest - before.closest;
+        shadow += gRaysTraced.shadow - before.shadow;
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+    return {closest.load(), shadow.load()};
+}
+
+inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, VcmPass& vp, RayCount& rays) {
+    const int W = scene.camera.width, H = scene.camera.height;
+    vp.radius = mergeRadius(scene, opt, pass);
+    vp.mergeEta = double(kPi) * vp.radius * vp.radius * double(W) * H;
+    vp.rowVertices.resize(H);  // kept from pass to pass: no allocation once the rows have grown
+    std::vector<std::vector<int>> rowLengths(H);
+    RayCount traced = parallelRows(H, threads, [&](int y) {
+        thread_local std::vector<PathVertex> path;
+        vp.rowVertices[y].clear();
+        for (int x = 0; x < W; ++x) {
+            Rng rng = lightPathRng(opt, y * W + x, pass);
+            lightSubpath(scene, opt, rng, path);
+            cacheMisSums(opt.heuristic, path, vp.mergeEta);
+            vp.rowVertices[y].insert(vp.rowVertices[y].end(), path.begin(), path.end());
+            rowLengths[y].push_back(int(path.size()));
+        }
+    });
+    rays.closest += traced.closest;
+    rays.shadow += traced.shadow;
+    vp.paths.clear();
+    vp.stored.clear();
+    vp.storedPoints.clear();
+    for (int y = 0; y < H; ++y) {
+        const PathVertex* v = vp.rowVertices[y].data();
+        for (int n : rowLengths[y]) {
+            uint32_t path = uint32_t(vp.paths.size());
+            vp.paths.emplace_back(v, n);
+            for (int i = 1; i < n && vp.radius > 0; ++i)
+                if (connectable(scene, v[i])) {
+                    vp.stored.push_back(storedVertex(opt.heuristic, Subpath(v, n), i, vp.mergeEta, path));
+                    vp.storedPoints.push_back(v[i].sp.p);
+                }
+            v += n;
+        }
+    }
+    if (vp.radius <= 0) return;
+    buildHashGrid(vp.grid, vp.storedPoints, vp.radius);
+    std::vector<VcmPass::Stored> byBucket(vp.stored.size());
+    for (size_t e = 0; e < byBucket.size(); ++e) byBucket[e] = vp.stored[vp.grid.entries[e]];
+    vp.stored.swap(byBucket);
+}
+
+// w of the merge of camera[t-1] with y = light[j] (light: y's light subpath; y its record): the
+// path is light[0..j-1] + camera[t-1..0] as for the connection (j, t), y's density of reaching
+// the merged vertex counted once. pdf and pdfReverse: camera[t-1]'s BSDF densities of sampling
+// y.wo from camera[t-1].wo and back. The light side's walk comes with y's record (walkLight:
+// along the subpath instead, as the max heuristic must, and tests compare).
+inline float mergeWeight(Subpath light, const VcmPass::Stored& y, Subpath camera, int t, Heuristic heuristic, double mergeEta,
+                         float pdf, float pdfReverse, bool walkLight = false) {
+    const int j = int(y.index);
+    const PathVertex& x = camera[t - 1];
+    Junction jn;
+    jn.lightEndDelta = true;
+    jn.ptRev = y.pdfFwd;
+    jn.qsRev = pdf * x.continuation * y.qsAreaFactor;
+    jn.ptMinusRev = toArea(pdfReverse * x.continuation, camera[t - 2], x.wo, x.prevDist2);
+    if (walkLight || heuristic == Heuristic::Max) jn.qsMinusRev = j >= 2 ? light[j - 2].pdfRev : 0;
+    else jn.qsPdfFwd = y.qsPdfFwd, jn.lightTerms = y.qsLightTerms;
+    double self = mergeEta * y.pdfFwd;  // p_merge / p_{j,t}
+    if (!(self > 0)) return 0;           // a light vertex sampled with density 0 cannot be merged
+    MisSum m = misWalk(light, j, camera, t, heuristic, mergeEta, jn, self);  // the merge itself among them
+    bool connectionAble = !y.qsDelta;
+    if (heuristic == Heuristic::Max) {
+        m.larger += connectionAble && 1 > self * (1 + 1e-4);
+        m.equal += connectionAble && std::fabs(1 - self) <= self * 1e-4;
+        return m.larger || m.equal == 0 ? 0 : 1.0f / m.equal;
+    }
+    double total = m.sum + (connectionAble ? misPower(heuristic, 1 / self) : 0);
+    return total > 0 ? float(1 / total) : 0;
+}
+
+// Every merge at the camera vertices z_1..z_{t-1}: the vertices of all light subpaths of the
+// pass within r (their own pixel's as well: a merge is not a connection).
+inline Vec3 mergeCameraVertices(const Scene& scene, const RenderOptions& opt, const VcmPass& vp, const std::vector<PathVertex>& camera,
+                                int here, RowOutput& out) {
+    Vec3 L(0);
+    for (int t = 2; t <= int(camera.size()); ++t) {
+        const PathVertex& x = camera[t - 1];
+        if (!connectable(scene, x)) continue;
+        forEachNeighbour(vp.grid, x.sp.p, [&](uint32_t n) {
+            const VcmPass::Stored& y = vp.stored[n];
+            int k = int(y.index) + t - 1;  // path length: index + 1 light vertices, t camera, one shared
+            if (k - 1 > opt.maxDepth) return;
+            float pdf, pdfReverse;
+            Vec3 f = evalBsdf(scene, x.sp, x.wo, y.wo, Transport::Radiance, pdf, pdfReverse);
+            float cosLight = absDot(y.wo, x.sp.ng);  // the light subpath's flux arrived through ng
+            if (isBlack(f) || cosLight == 0) return;
+            Vec3 c = x.beta * f * y.beta / (cosLight * float(vp.mergeEta));
+            float w = mergeWeight(vp.paths[y.path], y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
+            L += c * w;
+            if (opt.strategyMaxLength > 0 && k <= opt.strategyMaxLength) {
+                int image = mergeImageIndex(k, opt.strategyMaxLength);
+                out.strategySplats.push_back({here, c, 2 * image});
+                out.strategySplats.push_back({here, c * w, 2 * image + 1});
+            }
+        });
+    }
+    return L;
+}
+
+inline Vec3 radianceVCM(const Scene& scene, const RenderOptions& opt, const VcmPass& vp, int x, int y, Rng& rng, RowOutput& out) {
+    thread_local std::vector<PathVertex> camera;
+    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
+    cameraSubpath(scene, opt, filmX, filmY, rng, camera);
+    cacheMisSums(opt.heuristic, camera, vp.mergeEta);
+    int here = y * scene.camera.width + x;
+    Vec3 L = connectSubpaths(scene, opt, vp.paths[here], camera, here, vp.mergeEta, out);
+    return vp.mergeEta > 0 ? L + mergeCameraVertices(scene, opt, vp, camera, here, out) : L;
+}
+
+// What every method shares for one pass, computed before the pixels (ir's VPLs, vcm's light
+// subpaths and grid).
+struct PassData {
+    int pass = 0;
+    std::vector<Vpl> vpls;
+    VcmPass vcm;
+    RayCount rays;  // traced for them
+};
+
+inline void preparePass(const Scene& scene, const RenderOptions& opt, int pass, int threads, PassData& data) {
+    data.pass = pass;
+    data.rays = RayCount();
+    if (opt.method == Method::IR) data.rays = parallelRows(1, 1, [&](int) { data.vpls = traceVpls(scene, opt, pass); });
+    if (opt.method == Method::VCM) traceVcmLightPass(scene, opt, pass, threads, data.vcm, data.rays);
 }
 
 // One sample of pixel (x, y): what a camera path brings back; light paths add splats instead.
@@ -1819,7 +2187,8 @@ inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, const Pass
                         RowOutput& out) {
     switch (opt.method) {
         case Method::LT: traceLightPath(scene, opt, rng, out.splats); return Vec3(0);  // this pixel's stream: one light path
-        case Method::BDPT: return radianceBDPT(scene, opt, x, y, rng, out);
+        case Method::BDPT: return radianceBDPT(scene, opt, x, y, pass.pass, rng, out);
+        case Method::VCM: return radianceVCM(scene, opt, pass.vcm, x, y, rng, out);
         default: break;
     }
     float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
@@ -1829,6 +2198,7 @@ inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, const Pass
         case Method::NEE: return radianceNEE(scene, opt, ray, rng);
         default: return radianceIR(scene, opt, ray, rng, pass.vpls, out);
     }
+
 }
 
 // == 9. Film, rendering loop, image files =======================================================
@@ -1862,6 +2232,8 @@ struct RenderResult {
     std::vector<Image> strategyImages;  // bdpt --strategies: [2 strategyIndex(s,t) + weighted]
     bool interrupted = false;
     RayCount rays;                  // all threads, all passes (ir's VPL paths included)
+    size_t lightVertexBytes = 0;    // vcm: the most one pass's light subpaths and grid took
+    long long mergeableVertices = 0;  // vcm: in the grid, summed over passes
 };
 
 struct ProgressBar {
@@ -1920,9 +2292,11 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
     std::vector<Vec3> pass(size_t(W) * H);
     std::vector<RowOutput> rows(H);
     double energyUnclamped = 0, energyClamped = 0;
-    int L = opt.method == Method::BDPT ? opt.strategyMaxLength : 0;
-    std::vector<std::vector<double>> strategySum(L * (L + 3), std::vector<double>(3 * size_t(W) * H, 0.0));
+    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
+    int images = L * (L + 3) / 2 + (opt.method == Method::VCM ? L : 0);  // vcm: one merge image per length
+    std::vector<std::vector<double>> strategySum(2 * images, std::vector<double>(3 * size_t(W) * H, 0.0));
     RenderResult result;
+    PassData passData;  // kept from pass to pass: vcm reuses its buffers
     ProgressBar bar;
     bar.enabled = !opt.quiet && isatty(2);
     auto t0 = std::chrono::steady_clock::now();
@@ -1939,9 +2313,11 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
             closestRays += gRaysTraced.closest - before.closest;
             shadowRays += gRaysTraced.shadow - before.shadow;
         };
-        RayCount beforePass = gRaysTraced;
-        PassData passData = preparePass(scene, opt, p);
-        countRaysSince(beforePass);
+        preparePass(scene, opt, p, threads, passData);
+        closestRays += passData.rays.closest;
+        shadowRays += passData.rays.shadow;
+        result.lightVertexBytes = std::max(result.lightVertexBytes, passData.vcm.bytes());
+        result.mergeableVertices += (long long)passData.vcm.stored.size();
         std::atomic<int> nextRow{0};
         auto worker = [&](int id) {
             RayCount before = gRaysTraced;
@@ -2122,7 +2498,8 @@ inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, in
         {'0', "111101101101111"}, {'1', "010110010010111"}, {'2', "111001111100111"}, {'3', "111001111001111"},
         {'4', "101101111001001"}, {'5', "111100111001111"}, {'6', "111100111101111"}, {'7', "111001001001001"},
         {'8', "111101111101111"}, {'9', "111101111001111"}, {'s', "011100010001110"}, {'t', "010111010010011"},
-        {'=', "000111000111000"}, {' ', "000000000000000"}, {'k', "100101110101101"}};
+        {'=', "000111000111000"}, {' ', "000000000000000"}, {'k', "100101110101101"},
+        {'m', "000110111101101"}};
     for (size_t i = 0; i < text.size(); ++i) {
         auto g = glyphs.find(text[i]);
         if (g == glyphs.end()) continue;
@@ -2158,23 +2535,27 @@ inline std::string replaceExtension(const std::string& path, const std::string& 
 inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
     if (r.strategyImages.empty()) return true;
     const int W = r.image.width, H = r.image.height, gap = 4;
-    const int canvasW = (maxLength + 1) * (W + gap) + gap, canvasH = maxLength * (H + gap) + gap;
+    const bool merges = int(r.strategyImages.size()) > maxLength * (maxLength + 3);  // vcm: a column "m k" of merges
+    const int canvasW = (maxLength + 1 + merges) * (W + gap) + gap, canvasH = maxLength * (H + gap) + gap;
     bool ok = true;
     for (int weighted = 0; weighted < 2; ++weighted) {
         std::vector<unsigned char> canvas(size_t(canvasW) * canvasH * 3, 40);
         for (int k = 1; k <= maxLength; ++k)
-            for (int s = 0; s <= k; ++s) {
+            for (int s = 0; s <= k + merges; ++s) {  // s = k + 1: the merges of length k
                 int t = k + 1 - s;
-                const Image& img = r.strategyImages[2 * strategyIndex(s, t) + weighted];
-                std::string name = dir + "/s" + std::to_string(s) + "_t" + std::to_string(t) + (weighted ? "_weighted" : "_unweighted");
+                bool merge = s == k + 1;
+                if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
+                const Image& img = r.strategyImages[2 * (merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, t)) + weighted];
+                std::string label = merge ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(t);
+                std::string name = dir + (merge ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(t)) +
+                                   (weighted ? "_weighted" : "_unweighted");
                 ok = ok && writePNG(img, name + ".png", exposure) && writePFM(img, name + ".pfm");
                 std::vector<unsigned char> tile = toSRGBBytes(img, exposure);
                 int x0 = gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap), y0 = gap + (k - 1) * (H + gap);
                 for (int y = 0; y < H; ++y)
                     std::copy(tile.begin() + 3 * size_t(y) * W, tile.begin() + 3 * size_t(y + 1) * W,
                               canvas.begin() + 3 * (size_t(y0 + y) * canvasW + x0));
-                drawLabel(canvas, canvasW, canvasH, x0 + 3, y0 + 3, "s" + std::to_string(s) + " t" + std::to_string(t),
-                          std::max(1, H / 64));
+                drawLabel(canvas, canvasW, canvasH, x0 + 3, y0 + 3, label, std::max(1, H / 64));
             }
         std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
         ok = ok && writePNGBytes(canvas, canvasW, canvasH, pyramid);
@@ -2191,6 +2572,7 @@ inline const char* methodName(Method m) {
         case Method::LT: return "lt";
         case Method::IR: return "ir";
         case Method::BDPT: return "bdpt";
+        case Method::VCM: return "vcm";
     }
     return "?";
 }
@@ -2199,10 +2581,11 @@ inline std::string optionsLabel(const RenderOptions& o) {  // what distinguishes
     std::ostringstream s;
     if (o.method == Method::NEE && o.mis) s << "--mis ";
     if (o.method == Method::IR) s << "--vpls " << o.vplPaths << (o.clamp > 0 ? " --clamp " : "") << (o.clamp > 0 ? std::to_string(o.clamp) : "") << " ";
-    if (o.method == Method::BDPT) {
+    if (o.method == Method::BDPT || o.method == Method::VCM) {
         const char* h[] = {"balance", "power", "max", "uniform"};
         s << "--heuristic " << h[int(o.heuristic)] << " ";
     }
+    if (o.method == Method::VCM) s << "--alpha " << o.alpha << " ";
     if (o.maxDepth != 32) s << "--maxdepth " << o.maxDepth;
     std::string r = s.str();
     while (!r.empty() && r.back() == ' ') r.pop_back();
@@ -2262,16 +2645,21 @@ Method
                     lt   (c) light tracing: light paths splatted onto the film
                     ir   (d) instant radiosity: camera paths gather virtual point lights
                     bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)
+                    vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)
   --mis             nee: weight light and BSDF sampling with the power heuristic
   --vpls N          ir: light paths traced per pass, each leaving VPLs (default 16)
   --clamp C         ir: bound the geometry term G by C (panel (e)); prints the energy removed
-  --heuristic H     bdpt: MIS weights balance (default), power, max (the slides' maximum
+  --heuristic H     bdpt, vcm: MIS weights balance (default), power, max (the slides' maximum
                     heuristic) or uniform (1 / number of strategies able to make the path)
-  --strategies DIR  bdpt: also write one image per strategy (s,t) up to --strategy-length,
-                    unweighted and MIS-weighted, and two pyramid montages, into DIR
+  --radius R        vcm: merging radius r_0 of the first pass (default: one pixel's footprint
+                    where the central camera ray meets the scene); 0: no merging, as bdpt
+  --alpha A         vcm: radius schedule r_i = r_0 i^((A-1)/2), 0 < A <= 1 (default 0.75)
+  --strategies DIR  bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length
+                    (vcm: and one of all merges per path length), unweighted and MIS-weighted,
+                    and two pyramid montages, into DIR
   --strategy-length K  longest path (segments) with per-strategy images (default 5)
   --maxdepth D      at most D bounces (scattering vertices) per path (default 32)
-  --roulette R      lt, ir, bdpt: how subpaths end: throughput (q from the throughput after 3
+  --roulette R      lt, ir, bdpt, vcm: how subpaths end: throughput (q from the throughput after 3
                     bounces, as pt and nee), albedo (q = the material's albedo at every vertex,
                     counted in bdpt's MIS densities) or off (only --maxdepth)
 Deliberate mistakes (slides: "Non-symmetric scattering")
@@ -2313,6 +2701,7 @@ struct CommandLine {
     int width = 0, height = 0;
     bool help = false, symmetricRefraction = false, noAdjointCorrection = false, fixedRayOffset = false;
     int strategyLength = 5;
+    double radius = -1;          // vcm --radius; < 0: not given
     std::string strategiesDir, refPath, logPath;
     std::vector<std::string> failureLogs;
     std::string pfmA, pfmB;  // --compare or --average: the two images
@@ -2359,7 +2748,8 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             else if (m == "lt") cl.opt.method = Method::LT;
             else if (m == "ir") cl.opt.method = Method::IR;
             else if (m == "bdpt") cl.opt.method = Method::BDPT;
-            else fail("unknown method '" + printable(m) + "' (pt, nee, lt, ir, bdpt)");
+            else if (m == "vcm") cl.opt.method = Method::VCM;
+            else fail("unknown method '" + printable(m) + "' (pt, nee, lt, ir, bdpt, vcm)");
         } else if (a == "--heuristic") {
             std::string h = value(i);
             if (h == "balance") cl.opt.heuristic = Heuristic::Balance;
@@ -2376,6 +2766,8 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         } else if (a == "--strategies") {
             cl.strategiesDir = value(i);
         } else if (a == "--mis") cl.opt.mis = true;
+        else if (a == "--radius") cl.radius = number(i, 0, 1e30);
+        else if (a == "--alpha") cl.opt.alpha = float(number(i, 1e-3, 1));
         else if (a == "--vpls") cl.opt.vplPaths = int(integer(i, 1, 1e6));
         else if (a == "--strategy-length") cl.strategyLength = int(integer(i, 1, 12));
         else if (a == "--clamp") cl.opt.clamp = float(number(i, 1e-30, 1e30));
@@ -2425,13 +2817,16 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             fail(std::string(option) + " applies to " + whose + ", not to --method " + methodName(cl.opt.method));
     };
     onlyFor("--mis", {Method::NEE}, "--method nee");
-    onlyFor("--heuristic", {Method::BDPT}, "--method bdpt");
-    onlyFor("--strategies", {Method::BDPT}, "--method bdpt");
-    onlyFor("--strategy-length", {Method::BDPT}, "--method bdpt (with --strategies)");
+    onlyFor("--heuristic", {Method::BDPT, Method::VCM}, "--method bdpt and vcm");
+    onlyFor("--strategies", {Method::BDPT, Method::VCM}, "--method bdpt and vcm");
+    onlyFor("--strategy-length", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)");
+    onlyFor("--radius", {Method::VCM}, "--method vcm");
+    onlyFor("--alpha", {Method::VCM}, "--method vcm");
     onlyFor("--vpls", {Method::IR}, "--method ir");
     onlyFor("--clamp", {Method::IR}, "--method ir");
-    onlyFor("--roulette", {Method::LT, Method::IR, Method::BDPT}, "the methods that trace light paths (lt, ir, bdpt)");
-    onlyFor("--no-adjoint-correction", {Method::LT, Method::IR, Method::BDPT}, "the methods that trace light paths (lt, ir, bdpt)");
+    onlyFor("--roulette", {Method::LT, Method::IR, Method::BDPT, Method::VCM}, "the methods that trace light paths (lt, ir, bdpt, vcm)");
+    onlyFor("--no-adjoint-correction", {Method::LT, Method::IR, Method::BDPT, Method::VCM},
+            "the methods that trace light paths (lt, ir, bdpt, vcm)");
     if (given.count("--strategy-length") && cl.strategiesDir.empty()) fail("--strategy-length applies with --strategies DIR");
     if (given.count("--time") && given.count("--spp"))
         fail("--time and --spp both given: --time renders passes until the time is up, --spp a number of them; give one");
@@ -2519,13 +2914,13 @@ inline void warnAboutScene(const Scene& scene, const RenderOptions& opt, std::os
     Scene preview = scene;
     setResolution(preview.camera, 32, 32);
     RenderOptions o;
-    o.method = Method::BDPT;
+    o.method = opt.method == Method::VCM ? Method::VCM : Method::BDPT;  // vcm sees what bdpt cannot
     o.spp = 16;
     o.maxDepth = std::min(opt.maxDepth, 8);
     o.quiet = true;
     o.threads = 1;
     if (imageMean(render(preview, o).image) == 0)
-        err << scene.file << ": warning: a quick preview (bdpt, 32x32, 16 samples per pixel) sees no light at all: is a light "
+        err << scene.file << ": warning: a quick preview (" << methodName(o.method) << ", 32x32, 16 samples per pixel) sees no light at all: is a light "
                "facing away (a quad emits from its u x v side only), or shut in?\n";
 }
 
@@ -2560,6 +2955,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         return 2;
     }
     if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
+    if (cl.opt.method == Method::VCM && cl.radius >= 0) cl.opt.mergeRadius = float(cl.radius);
     std::string pfm = replaceExtension(cl.out, ".pfm");
     std::string problem = checkOutputs(cl, pfm);
     if (!problem.empty()) {
@@ -2631,6 +3027,13 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     if (r.interrupted) {
         err << "bdpt: interrupted: wrote the " << r.passes << " completed samples per pixel to " << cl.out << " and " << pfm << "\n";
         return kExitInterrupted;
+    }
+    if (!cl.opt.quiet && cl.opt.method == Method::VCM) {
+        char text[256];
+        std::snprintf(text, sizeof text, "vcm: radius %g in pass 1, %g in pass %d; %.1f mergeable light vertices per pixel and pass; "
+                      "light subpaths and grid %.1f MB\n", mergeRadius(scene, cl.opt, 0), mergeRadius(scene, cl.opt, r.passes - 1), r.passes,
+                      double(r.mergeableVertices) / (double(r.passes) * r.image.width * r.image.height), r.lightVertexBytes / 1e6);
+        out << text;
     }
     if (!cl.opt.quiet && cl.opt.method == Method::IR && cl.opt.clamp > 0)
         out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved << "% of the energy gathered from VPLs\n";

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # make bench: our BVH against Embree on the same rays (tests/bench.h), interleaved runs, ratios
-# from one session; then bdpt's cost per sample against nee's.
+# from one session; then bdpt's cost per sample against nee's, and vcm's pass and memory
+# against bdpt's.
 # Two builds of ours: portable (SSE2, 4-wide nodes: build/bench_rays) and build/native/bench_rays
 # (-march=native, 8-wide AVX nodes), the fair match for Embree, which picks its CPU's widest SIMD.
 # Embree's half (build/embree_rays) exists where libembree-dev is installed; without it the
@@ -61,4 +62,27 @@ for line in open(sys.argv[1]):
 print("rays per sample: nee %.2f, bdpt %.2f (%.2fx); median seconds nee %.2f, bdpt %.2f: %.2fx" % (rays["nee"], rays["bdpt"],
       rays["bdpt"] / rays["nee"], statistics.median(t["nee"]), statistics.median(t["bdpt"]),
       statistics.median(t["bdpt"]) / statistics.median(t["nee"])))
+PY
+# vcm's price: a pass against a bdpt pass (CPU seconds of the whole process, so the light pass's
+# threads count), medians of interleaved runs; and the memory of one pass's light subpaths and
+# grid, as vcm's summary line reports it, at the scene's resolution, 256x256 and 1024x1024.
+python3 - "$runs" "$out" <<'PY'
+import resource, statistics, subprocess, sys, re
+runs, out = int(sys.argv[1]), sys.argv[2]
+def cpu(args):
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    text = subprocess.run(["./bdpt"] + args + ["--out", out + "/vcm.png"], capture_output=True, text=True, check=True).stdout
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime, text
+for scene in ("cornell", "sds-point"):
+    t = {"bdpt": [], "vcm": []}
+    for i in range(runs):
+        for m in ("bdpt", "vcm"):
+            t[m].append(cpu(["scenes/%s.scene" % scene, "--method", m, "--spp", "8"])[0])
+    b, v = statistics.median(t["bdpt"]), statistics.median(t["vcm"])
+    print("== cost per pass, vcm / bdpt on scenes/%s.scene (8 passes, CPU s, median of %d): bdpt %.2f, vcm %.2f: %.2fx" % (scene, runs, b, v, v / b))
+    for res in ("", "256x256", "1024x1024"):
+        text = cpu(["scenes/%s.scene" % scene, "--method", "vcm", "--spp", "1"] + (["--res", res] if res else []))[1]
+        m = re.search(r"([0-9.]+) mergeable light vertices per pixel and pass; light subpaths and grid ([0-9.]+) MB", text)
+        print("   memory of one pass's light subpaths and grid at %s: %s MB (%s mergeable vertices per pixel)" % (res or "the scene's resolution", m.group(2), m.group(1)))
 PY

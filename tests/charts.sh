@@ -3,7 +3,8 @@
 #   tests/charts.sh refs      references of every scene (once; kept in scenes/refs/, reused)
 #   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts
 #                             in lecture_notes/figures/, and the failure table in Appendix A of the notes
-#   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time
+#   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time,
+#                             the thin-gap figure, and sds-point by pt, bdpt and vcm (sds-vcm.png)
 #   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
 #   tests/charts.sh tables    the failure table and the reference check from the runs' logs
 #   tests/charts.sh refcheck  the references' noise against the charted errors (also run by charts)
@@ -13,7 +14,7 @@ cd "$(dirname "$0")/.."
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
 REF_SECONDS=${REF_SECONDS:-90}    # per reference seed: far more than a run, so its noise is far below
 RUN_SECONDS=${RUN_SECONDS:-4}     # per method and scene (90 runs: 6 minutes)
-ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refraction shading-normals sds sds-point"
+ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refraction shading-normals sds sds-point sds-ior1"
 SCENES=${SCENES:-$ALL_SCENES}
 FIG=lecture_notes/figures
 RECORD=lecture_notes/appendix-a-speed-and-accuracy.md  # where the generated tables go
@@ -24,7 +25,7 @@ clampFor() {  # G is in the scene's units: a clamp that removes a visible share 
   case $1 in cornell*|indirect|shading-normals) echo 1e-5 ;; furnace) echo 0.1 ;; refraction) echo 0.05 ;; *) echo 0.2 ;; esac
 }
 # One colour per method and one dash pattern per variant, the same in every chart (colour-blind
-# safe: Okabe-Ito): pt black, nee blue, lt orange, ir purple, bdpt vermilion.
+# safe: Okabe-Ito): pt black, nee blue, lt orange, ir purple, bdpt vermilion, vcm bluish green.
 lineStyle() {
   case $1 in
     pt) echo "lc rgb '#000000' dt 1" ;;          nee) echo "lc rgb '#0072b2' dt 1" ;;
@@ -32,6 +33,7 @@ lineStyle() {
     ir) echo "lc rgb '#cc79a7' dt 1" ;;          ir-clamp) echo "lc rgb '#cc79a7' dt 2" ;;
     bdpt-balance) echo "lc rgb '#d55e00' dt 1" ;; bdpt-power) echo "lc rgb '#d55e00' dt 2" ;;
     bdpt-max) echo "lc rgb '#d55e00' dt 3" ;;    bdpt-uniform) echo "lc rgb '#d55e00' dt 4" ;;
+    vcm) echo "lc rgb '#009e73' dt 1" ;;
     *) echo "lc rgb '#999999' dt 1" ;;
   esac
 }
@@ -40,12 +42,12 @@ styles() {  # every method's chart style: tests/test_notes.cpp checks that no tw
   methods cornell | while IFS='|' read -r label opts; do echo "$label $(lineStyle "$label")"; done
 }
 
-# The ten runs of every scene: label|options
+# The eleven runs of every scene: label|options
 methods() {
   printf '%s\n' "pt|--method pt" "nee|--method nee" "nee-mis|--method nee --mis" "lt|--method lt" "ir|--method ir" \
     "ir-clamp|--method ir --clamp $(clampFor "$1")" "bdpt-balance|--method bdpt --heuristic balance" \
     "bdpt-power|--method bdpt --heuristic power" "bdpt-max|--method bdpt --heuristic max" \
-    "bdpt-uniform|--method bdpt --heuristic uniform"
+    "bdpt-uniform|--method bdpt --heuristic uniform" "vcm|--method vcm"
 }
 
 # The method that converges fastest on each scene at the chart resolution (measured: its two seeds
@@ -55,9 +57,16 @@ refMethod() {
     cornell|indirect|shading-normals) echo lt ;;  # diffuse and glossy: one light path lands on many pixels
     cornell-glass) echo nee ;;
     refraction|sds) echo pt ;;                    # light arrives through glass: eye paths hit the sky/lamp
+    sds-point) echo vcm ;;                        # only merging reaches L S D S E
+    sds-ior1) echo nee ;;                         # exact: the room without its index-1 balls (refScene)
     *) echo bdpt ;;                               # point lights: lt would show the light as a pixel
   esac
 }
+# Extra options of a scene's reference run (none so far: sds-point's vcm keeps the default
+# radius, which after its ~20,000 passes has shrunk to a third of a chart run's first one; a
+# quarter of it left the two seeds 0.038 apart in RMSE, as noisy as a chart run).
+refOptions() { :; }
+refScene() { if [ "$1" = sds-ior1 ]; then echo tests/sds-ior1-open.scene; else echo "scenes/$1.scene"; fi; }
 
 # sds-point's bdpt makes the fewest samples per second: 4 times the time for the same margin.
 refSeconds() { if [ "$1" = sds-point ]; then echo $((REF_SECONDS * 4)); else echo "$REF_SECONDS"; fi; }
@@ -80,7 +89,7 @@ refs() {
       m=$(refMethod "$s"); secs=$(refSeconds "$s")
       for seed in 101 102; do
         # shellcheck disable=SC2086
-        ./bdpt scenes/$s.scene --method $m --res "$RES" --time "$secs" --seed $seed --quiet \
+        ./bdpt "$(refScene "$s")" --method $m $(refOptions "$s") --res "$RES" --time "$secs" --seed $seed --quiet \
           --out "$LOGS/refs/$s-$seed.png" --log "$LOGS/refs/$s-$seed.csv"
       done
       ./bdpt --average "$LOGS/refs/$s-101.pfm" "$LOGS/refs/$s-102.pfm" --out scenes/refs/$s.png
@@ -199,6 +208,30 @@ bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
     echo "figure $FIG/six-panels-$kind.png"
   done
   thingap
+  sds
+}
+
+# The companion of the six panels, for the slides' "VCM, later": sds-point, whose light reaches
+# the camera only through glass, by pt, bdpt and vcm for the same time.
+sds() {
+  local panels="pt|pt: black (a point light cannot be hit)|--method pt
+bdpt|bdpt: only paths with two diffuse vertices|--method bdpt
+vcm|vcm: merges make L S D S E|--method vcm" secs=20
+  mkdir -p "$LOGS/fig"
+  {
+    echo 'set terminal pngcairo size 1200,330 font "sans,11"'
+    echo "set output '$FIG/sds-vcm.png'"
+    echo "set multiplot layout 1,3 title 'scenes/sds-point.scene (a point light in a glass ball, the camera in another), $secs s each, exposure -1' font ',12'"
+    echo 'unset border; unset tics; unset key; set size ratio -1; set lmargin 0; set rmargin 0; set tmargin 3; set bmargin 0'
+    while IFS='|' read -r name title opts; do
+      # shellcheck disable=SC2086
+      mean=$(./bdpt scenes/sds-point.scene $opts --time $secs --exposure -1 --out "$LOGS/fig/sds-$name.png" | sed -n 's/.* mean \([0-9.e+-]*\),.*/\1/p')
+      echo "set title '$title; mean $(printf %.3f "$mean")'"
+      echo "plot '$LOGS/fig/sds-$name.png' binary filetype=png with rgbimage"
+    done <<< "$panels"
+    echo 'unset multiplot'
+  } | gnuplot
+  echo "figure $FIG/sds-vcm.png"
 }
 
 # Section 2's figure: the thin gap with the error-bounded ray offset and with the rule of thumb.

@@ -1,5 +1,7 @@
 // make efficiency: what each method is worth where the slides say bidirectional methods pay off
-// (cornell-glass, glass-box, indirect) and where they should not (cornell's direct light).
+// (cornell-glass, glass-box, indirect), where they should not (cornell's direct light), and
+// sds-ior1, whose light reaches the camera only along L S D S E and longer: only vcm's merges
+// make those paths, and the reference is exact (the room without the balls, by nee).
 // Every method renders each scene at the references' resolution with the same samples per pixel,
 // on one thread, for several seeds, interleaved (seed by seed, method by method) so that a noisy
 // machine slows them alike. Per run: CPU seconds of the rendering thread and the MSE against
@@ -40,6 +42,7 @@ static std::vector<Variant> variants(bool alternatives) {
         {"bdpt --heuristic power", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Power; })},
         {"bdpt --heuristic max", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Max; })},
         {"bdpt --heuristic uniform", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Uniform; })},
+        {"vcm", with(Method::VCM)},
     };
     if (alternatives) {
         v.push_back({"bdpt --roulette throughput", with(Method::BDPT, [](RenderOptions& o) { o.roulette = Roulette::Throughput; })});
@@ -78,7 +81,7 @@ int main(int argc, char** argv) {
     int spp = 256, seeds = 4;
     bool alternatives = false;
     std::string only;
-    std::vector<std::string> scenes = {"cornell", "cornell-glass", "indirect", "glass-box"};
+    std::vector<std::string> scenes = {"cornell", "cornell-glass", "indirect", "glass-box", "sds-ior1"};
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--spp" && i + 1 < argc) spp = std::atoi(argv[++i]);

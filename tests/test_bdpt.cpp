@@ -24,7 +24,7 @@ static float pdfDirection(const Scene& scene, const PathVertex& cur, Vec3 wo, Ve
 }
 
 static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s, Heuristic h, std::vector<PathVertex>& y,
-                    std::vector<PathVertex>& z) {
+                    std::vector<PathVertex>& z, double mergeEta = 0) {
     const int n = int(x.size()), t = n - s;
     y.assign(x.begin(), x.begin() + s);
     z.clear();
@@ -65,8 +65,8 @@ static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s,
         v.pdfFwd = j == 0 ? 1 : z[j - 1].continuation * (z[j - 1].delta ? 1 : toArea(pdfDirection(scene, z[j - 1], z[j - 1].wo, -v.wo), v, v.wo, v.prevDist2));
         v.pdfRev = j + 2 < t ? z[j + 1].continuation * (z[j + 1].delta ? 1 : toArea(pdfDirection(scene, z[j + 1], -z[j + 2].wo, z[j + 1].wo), v, z[j + 1].wo, z[j + 1].prevDist2)) : 0;
     }
-    cacheMisSums(h, y);
-    cacheMisSums(h, z);
+    cacheMisSums(h, y, mergeEta);
+    cacheMisSums(h, z, mergeEta);
 }
 
 // Can strategy (s, n-s) make this path at all? s = 0 needs x_0 on an area light; a connection
@@ -79,7 +79,11 @@ static bool able(const Scene& scene, const std::vector<PathVertex>& x, int s) {
     return !specularAt(scene, a) && !specularAt(scene, b);
 }
 
-struct WeightCheck { int paths = 0; double worstSum = 0, worstRebuild = 0, worstDefinition = 0; std::map<int, int> lengths; };
+struct WeightCheck {
+    int paths = 0;
+    double worstSum = 0, worstRebuild = 0, worstDefinition = 0, worstMergeWalk = 0, mergeShare = 0;
+    std::map<int, int> lengths;
+};
 
 // The slides' Probability(SP, estimator), computed from scratch: the density with which strategy
 // s makes the path is the product of every vertex's pdfFwd in the two rebuilt subpaths (the
@@ -107,7 +111,10 @@ static double definitionWeight(Heuristic h, const std::map<int, double>& p, int 
     return (h == Heuristic::Power ? ps * ps : h == Heuristic::Uniform ? 1 : ps) / sum;
 }
 
-static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, uint64_t seed, Roulette roulette = RenderOptions().roulette) {
+// mergeEta > 0: vcm's weights, where a merge at every non-specular vertex x_i (0 < i < n-1) is
+// one more strategy, of density p_i * mergeEta * p_light(x_i) (the keys 1000 + i below).
+static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, uint64_t seed, Roulette roulette = RenderOptions().roulette,
+                                double mergeEta = 0) {
     RenderOptions opt = quietOptions(Method::BDPT, 1, seed);
     opt.maxDepth = 6;
     opt.heuristic = h;
@@ -118,8 +125,8 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
         Rng rng = makeRng(seed, uint64_t(i), 7);
         cameraSubpath(scene, opt, rng.uniform() * scene.camera.width, rng.uniform() * scene.camera.height, rng, camera);
         lightSubpath(scene, opt, rng, light);
-        cacheMisSums(h, camera);
-        cacheMisSums(h, light);
+        cacheMisSums(h, camera, mergeEta);
+        cacheMisSums(h, light, mergeEta);
         for (int t = 1; t <= int(camera.size()); ++t)
             for (int s = 0; s <= int(light.size()); ++s) {
                 if (s + t < 3 || s + t - 2 > opt.maxDepth) continue;  // k >= 2: more than one strategy
@@ -131,18 +138,36 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
                 std::map<int, double> density, weight;
                 for (int s2 = 0; s2 < int(x.size()); ++s2) {
                     if (!able(scene, x, s2)) continue;
-                    rebuild(scene, x, s2, h, y, z);
+                    rebuild(scene, x, s2, h, y, z, mergeEta);
                     int t2 = int(x.size()) - s2;
                     Connection c2;  // what connectStrategy would have evaluated for (s2, t2)
                     if (s2 > 0) evalConnection(scene, y[s2 - 1], z[t2 - 1], c2);
-                    float w = misWeight(scene, y, s2, z, t2, h, c2);
+                    float w = misWeight(scene, y, s2, z, t2, h, c2, mergeEta);
                     density[s2] = pathDensity(y, z);
                     weight[s2] = w;
                     sum += w;
                     if (s2 == s) {  // the rebuilt subpaths give the weight the sample got
-                        float w0 = misWeight(scene, light, s, camera, t, h, connection);
+                        float w0 = misWeight(scene, light, s, camera, t, h, connection, mergeEta);
                         wc.worstRebuild = std::max(wc.worstRebuild, double(std::fabs(w - w0)));
                     }
+                }
+                for (int i = 1; mergeEta > 0 && i + 1 < int(x.size()); ++i) {
+                    if (specularAt(scene, x[i])) continue;
+                    std::vector<PathVertex> yMerge, zMerge, unused;
+                    rebuild(scene, x, i + 1, h, yMerge, unused, mergeEta);  // the light subpath x_0..x_i
+                    rebuild(scene, x, i, h, unused, zMerge, mergeEta);      // the camera subpath x_{n-1}..x_i
+                    int t2 = int(x.size()) - i;
+                    const PathVertex& xi = zMerge[t2 - 1];
+                    float pdf, pdfReverse;
+                    if (isBlack(evalBsdf(scene, xi.sp, xi.wo, yMerge[i].wo, Transport::Radiance, pdf, pdfReverse))) continue;
+                    VcmPass::Stored record = storedVertex(h, yMerge, i, mergeEta, 0);
+                    float w = mergeWeight(yMerge, record, zMerge, t2, h, mergeEta, pdf, pdfReverse);
+                    float wWalked = mergeWeight(yMerge, record, zMerge, t2, h, mergeEta, pdf, pdfReverse, true);
+                    wc.worstMergeWalk = std::max(wc.worstMergeWalk, double(std::fabs(w - wWalked)));
+                    density[1000 + i] = pathDensity(yMerge, zMerge) * mergeEta;  // x_i's two densities: p_i p_light(x_i)
+                    weight[1000 + i] = w;
+                    sum += w;
+                    wc.mergeShare += w;
                 }
                 wc.worstSum = std::max(wc.worstSum, std::fabs(sum - 1));
                 for (auto [s2, w] : weight) wc.worstDefinition = std::max(wc.worstDefinition, std::fabs(w - definitionWeight(h, density, s2)));
@@ -150,6 +175,7 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
                 ++wc.lengths[int(x.size()) - 1];
             }
     }
+    if (wc.paths > 0) wc.mergeShare /= wc.paths;
     return wc;
 }
 
@@ -181,6 +207,31 @@ TEST_CASE("MIS: the weights of all strategies able to make a path sum to 1 and f
                 // (pdfFwd/pdfRev) still sums to 1, and power computed as balance would too.
                 CHECK(wc.worstDefinition < 1e-3);
             }
+        }
+}
+
+// The same check for vcm: connections and merges together. mergeEta = pi r^2 N_light with the
+// default radius and the light subpaths of the scene's own resolution, so that merges take a real
+// share; sds adds the paths L S D S E, which only s = 0 and merges make.
+TEST_CASE("vcm MIS: the weights of all connections and merges able to make a path sum to 1 and follow each heuristic's definition") {
+    struct Case { std::string name; Scene scene; double mergeEta; };
+    std::vector<Case> cases;
+    for (const char* file : {"scenes/cornell.scene", "scenes/cornell-glass.scene", "scenes/sds.scene", "scenes/shading-normals.scene"}) {
+        Scene full = loadScene(file);
+        double eta = kPi * sqr(double(defaultMergeRadius(full))) * full.camera.width * full.camera.height;
+        cases.push_back({file, smallScene(file), eta});
+    }
+    for (Heuristic h : {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform})
+        for (Case& c : cases) {
+            CAPTURE(c.name);
+            CAPTURE(int(h));
+            WeightCheck wc = checkWeights(c.scene, h, 300, 78, Roulette::Albedo, c.mergeEta);
+            CHECK(wc.paths > 300);
+            CHECK(wc.worstSum < 1e-4);
+            CHECK(wc.worstRebuild < 1e-3);
+            CHECK(wc.worstDefinition < 1e-3);
+            CHECK(wc.worstMergeWalk < 1e-5);  // a merge's record gives what the walk along its light subpath gives
+            CHECK(wc.mergeShare > 0.01);      // the merges took part
         }
 }
 
@@ -354,7 +405,7 @@ TEST_CASE("--strategies writes every (s,t) image, weighted and not, and the two 
     CHECK(!fileExists(dir + "/s0_t5_unweighted.png"));  // k = 4 > --strategy-length
     std::ostringstream so2, se2;
     CHECK(runCommandLine({"scenes/cornell.scene", "--method", "nee", "--strategies", dir}, so2, se2) == 2);
-    CHECK(se2.str().find("--strategies applies to --method bdpt, not to --method nee") != std::string::npos);
+    CHECK(se2.str().find("--strategies applies to --method bdpt and vcm, not to --method nee") != std::string::npos);
     CHECK(runCommandLine({"scenes/cornell.scene", "--heuristic", "best"}, so2, se2) == 2);
     CHECK(se2.str().find("unknown heuristic 'best'") != std::string::npos);
 }
