@@ -63,12 +63,12 @@ refMethod() {
   esac
 }
 # Extra options of a scene's reference run (none so far: sds-point's vcm keeps the default
-# radius, which after its ~20,000 passes has shrunk to a third of a chart run's first one; a
+# radius, which after its ~17,000 passes has shrunk to 0.3 of a chart run's first one; a
 # quarter of it left the two seeds 0.038 apart in RMSE, as noisy as a chart run).
 refOptions() { :; }
 refScene() { if [ "$1" = sds-ior1 ]; then echo tests/sds-ior1-open.scene; else echo "scenes/$1.scene"; fi; }
 
-# sds-point's bdpt makes the fewest samples per second: 4 times the time for the same margin.
+# sds-point's reference (vcm) makes the fewest samples per second: 4 times the time.
 refSeconds() { if [ "$1" = sds-point ]; then echo $((REF_SECONDS * 4)); else echo "$REF_SECONDS"; fi; }
 
 # Per scene: the chosen method with two seeds no chart run uses (charts use seed 1), refSeconds
