@@ -1994,7 +1994,6 @@ struct VcmPass {
         bool qsDelta;
     };
     std::vector<Stored> stored;           // in the grid's bucket order
-    std::vector<Vec3> storedPoints;       // (only while the grid is built)
     HashGrid grid;
     size_t bytes() const {  // what the light vertices and the grid take
         size_t b = 0;
@@ -2039,19 +2038,20 @@ inline float mergeRadius(const Scene& scene, const RenderOptions& opt, int pass)
     return r0 * std::pow(float(pass + 1), (opt.alpha - 1) / 2);
 }
 
-// Runs body(row) for rows 0..rows-1 on `threads` threads; returns the rays they traced.
-inline RayCount parallelRows(int rows, int threads, const std::function<void(int)>& body) {
+// Runs body(row, onCallingThread) for rows 0..rows-1 on `threads` threads (the calling one among
+// them: it alone may draw the progress bar); returns the rays they traced.
+inline RayCount parallelRows(int rows, int threads, const std::function<void(int, bool)>& body) {
     std::atomic<int> nextRow{0};
     std::atomic<long long> closest{0}, shadow{0};
-    auto worker = [&] {
+    auto worker = [&](bool onCallingThread) {
         RayCount before = gRaysTraced;
-        for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y);
+        for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y, onCallingThread);
         closest += gRaysTraced.closest - before.closest;
         shadow += gRaysTraced.shadow - before.shadow;
     };
     std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-    worker();
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, false);
+    worker(true);
     for (std::thread& t : pool) t.join();
     return {closest.load(), shadow.load()};
 }
@@ -2062,7 +2062,7 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
     vp.mergeEta = double(kPi) * vp.radius * vp.radius * double(W) * H;
     vp.rowVertices.resize(H);  // kept from pass to pass: no allocation once the rows have grown
     std::vector<std::vector<int>> rowLengths(H);
-    RayCount traced = parallelRows(H, threads, [&](int y) {
+    RayCount traced = parallelRows(H, threads, [&](int y, bool) {
         thread_local std::vector<PathVertex> path;
         vp.rowVertices[y].clear();
         for (int x = 0; x < W; ++x) {
@@ -2077,7 +2077,7 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
     rays.shadow += traced.shadow;
     vp.paths.clear();
     vp.stored.clear();
-    vp.storedPoints.clear();
+    std::vector<Vec3> points;  // of the stored vertices, for the grid (which keeps its own copy)
     for (int y = 0; y < H; ++y) {
         const PathVertex* v = vp.rowVertices[y].data();
         for (int n : rowLengths[y]) {
@@ -2086,13 +2086,13 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
             for (int i = 1; i < n && vp.radius > 0; ++i)
                 if (connectable(scene, v[i])) {
                     vp.stored.push_back(storedVertex(opt.heuristic, Subpath(v, n), i, vp.mergeEta, path));
-                    vp.storedPoints.push_back(v[i].sp.p);
+                    points.push_back(v[i].sp.p);
                 }
             v += n;
         }
     }
     if (vp.radius <= 0) return;
-    buildHashGrid(vp.grid, vp.storedPoints, vp.radius);
+    buildHashGrid(vp.grid, points, vp.radius);
     std::vector<VcmPass::Stored> byBucket(vp.stored.size());
     for (size_t e = 0; e < byBucket.size(); ++e) byBucket[e] = vp.stored[vp.grid.entries[e]];
     vp.stored.swap(byBucket);
@@ -2178,7 +2178,7 @@ struct PassData {
 inline void preparePass(const Scene& scene, const RenderOptions& opt, int pass, int threads, PassData& data) {
     data.pass = pass;
     data.rays = RayCount();
-    if (opt.method == Method::IR) data.rays = parallelRows(1, 1, [&](int) { data.vpls = traceVpls(scene, opt, pass); });
+    if (opt.method == Method::IR) data.rays = parallelRows(1, 1, [&](int, bool) { data.vpls = traceVpls(scene, opt, pass); });
     if (opt.method == Method::VCM) traceVcmLightPass(scene, opt, pass, threads, data.vcm, data.rays);
 }
 
@@ -2308,44 +2308,28 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
             result.interrupted = true;
             break;
         }
-        std::atomic<long long> closestRays{0}, shadowRays{0};
-        auto countRaysSince = [&](RayCount before) {
-            closestRays += gRaysTraced.closest - before.closest;
-            shadowRays += gRaysTraced.shadow - before.shadow;
-        };
         preparePass(scene, opt, p, threads, passData);
-        closestRays += passData.rays.closest;
-        shadowRays += passData.rays.shadow;
         result.lightVertexBytes = std::max(result.lightVertexBytes, passData.vcm.bytes());
         result.mergeableVertices += (long long)passData.vcm.stored.size();
-        std::atomic<int> nextRow{0};
-        auto worker = [&](int id) {
-            RayCount before = gRaysTraced;
-            for (int y; (y = nextRow.fetch_add(1)) < H;) {
-                RowOutput& row = rows[y];
-                row.splats.clear();
-                row.strategySplats.clear();
-                row.nonFinite = 0;
-                row.energyUnclamped = row.energyClamped = 0;
-                for (int x = 0; x < W; ++x) {
-                    Rng rng = makeRng(opt.seed, uint64_t(y) * W + x, uint64_t(p));
-                    Vec3 v = samplePixel(scene, opt, passData, x, y, rng, row);
-                    if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
-                    pass[size_t(y) * W + x] = v;
-                }
-                if (id == 0) {
-                    double f = fraction(p + double(y + 1) / H);
-                    bar.show(std::min(0.999, f), p, secondsSince(t0) * (1 / std::max(1e-9, f) - 1));
-                }
+        RayCount traced = parallelRows(H, threads, [&](int y, bool onCallingThread) {
+            RowOutput& row = rows[y];
+            row.splats.clear();
+            row.strategySplats.clear();
+            row.nonFinite = 0;
+            row.energyUnclamped = row.energyClamped = 0;
+            for (int x = 0; x < W; ++x) {
+                Rng rng = makeRng(opt.seed, uint64_t(y) * W + x, uint64_t(p));
+                Vec3 v = samplePixel(scene, opt, passData, x, y, rng, row);
+                if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
+                pass[size_t(y) * W + x] = v;
             }
-            countRaysSince(before);
-        };
-        std::vector<std::thread> pool;
-        for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i);
-        worker(0);
-        for (std::thread& t : pool) t.join();
-        result.rays.closest += closestRays;
-        result.rays.shadow += shadowRays;
+            if (onCallingThread) {
+                double f = fraction(p + double(y + 1) / H);
+                bar.show(std::min(0.999, f), p, secondsSince(t0) * (1 / std::max(1e-9, f) - 1));
+            }
+        });
+        result.rays.closest += traced.closest + passData.rays.closest;
+        result.rays.shadow += traced.shadow + passData.rays.shadow;
         double passSum = 0;
         for (int y = 0; y < H; ++y) {
             result.nonFinite += rows[y].nonFinite;
