@@ -64,7 +64,7 @@ refs: bdpt
 charts: bdpt
 	tests/charts.sh charts
 
-figures: bdpt
+figures: bdpt build/estimators
 	tests/charts.sh figures
 	tests/charts.sh notes
 
@@ -109,6 +109,11 @@ bench: bdpt build/bench_rays build/native/bench_rays $(if $(EMBREE),build/embree
 
 # Error at equal samples and efficiency 1/(MSE x CPU-s) of every method (tests/efficiency.cpp).
 build/efficiency: tests/efficiency.cpp tests/bench.h bdpt.cpp build/flags
+	@mkdir -p build
+	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
+
+# The densities of page 10's "Combination of Estimators: Example" (tests/estimators.cpp).
+build/estimators: tests/estimators.cpp tests/bench.h bdpt.cpp build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 

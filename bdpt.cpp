@@ -154,6 +154,7 @@ struct Shape {
     int material = 0;
     Vec3 emission;        // radiance Le leaving the front side (black: not a light)
     float bumpAmplitude = 0, bumpFrequency = 0;  // shading-normal perturbation (section 4)
+    Vec3 tiltedNormal;    // quad "tilt": a constant shading normal (zero: none)
     int light = -1;       // index into Scene::lights when emissive
     int line = 0;         // where the scene file defines it (for warnings)
 };
@@ -222,7 +223,10 @@ inline Vec3 geometricNormal(const Shape& s, Vec3 p) {
 
 // The "procedural bump" of a shape tilts the shading normal by a smooth tangential pattern:
 // ns = normalize(ng + A (g - (g.ng) ng)), g = (sin f x, sin f y, sin f z). One directive, no maps.
+// A quad's "tilt" turns ns by one constant angle toward its edge u: the slides' "energy
+// generator" at its plainest, one ratio |wo.ns|/|wo.ng| for every point (lecture notes, page 13).
 inline Vec3 shadingNormal(const Shape& s, Vec3 p, Vec3 ng) {
+    if (s.tiltedNormal.x != 0 || s.tiltedNormal.y != 0 || s.tiltedNormal.z != 0) return s.tiltedNormal;
     if (s.bumpAmplitude == 0) return ng;
     float f = s.bumpFrequency;
     Vec3 g(std::sin(f * p.x), std::sin(f * p.y), std::sin(f * p.z));
@@ -760,7 +764,9 @@ inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Tran
     }
     // Smooth dielectric: reflect with probability F, refract with 1-F, so weight = 1 (x eta rule).
     bool entering = dot(wo, sp.ng) > 0;  // the front side (ng) is outside, ior 1
-    float etaO = entering ? 1 : m.ior, etaT = entering ? m.ior : 1, eta = etaO / etaT;
+    // eta_o on wo's side, eta_i on wi's: in radiance transport light arrives along wi, so these are
+    // the slides' eta_t (transmitted) and eta_i (incident) of "Power versus Radiance".
+    float etaO = entering ? 1 : m.ior, etaI = entering ? m.ior : 1, eta = etaO / etaI;
     float cosO = dot(wo, n);
     float F = fresnelDielectric(cosO, eta);
     if (u1 < F) {
@@ -772,11 +778,11 @@ inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Tran
     float cosT = std::sqrt(std::max(0.0f, 1 - eta * eta * (1 - cosO * cosO)));
     bs.wi = normalize(-eta * wo + (eta * cosO - cosT) * n);
     bs.pdf = 1 - F;
-    // Radiance flows wi -> wo: L_wo = (etaO/etaT)^2 L_wi. Importance carries no such factor. The
+    // Radiance flows wi -> wo: L_wo = (etaO/etaI)^2 L_wi. Importance carries no such factor. The
     // deliberate mistake swaps the rules: eye tracing scales like power (as smallpt), particles
     // scale like radiance (a light tracer that reuses the radiance BTDF).
     bool scaleAsRadiance = (mode == Transport::Radiance) != scene.symmetricRefraction;
-    float etaScale = !scaleAsRadiance ? 1 : mode == Transport::Radiance ? sqr(etaO / etaT) : sqr(etaT / etaO);
+    float etaScale = !scaleAsRadiance ? 1 : mode == Transport::Radiance ? sqr(etaO / etaI) : sqr(etaI / etaO);
     bs.weight = Vec3(etaScale * adjointCorrection(scene, sp, wo, bs.wi, mode));
     return dot(bs.wi, sp.ng) * dot(wo, sp.ng) < 0;
 }
@@ -910,7 +916,7 @@ inline float pixelImportance(const Camera& cam, Vec3 dir) {
 
 // The solid-angle density of the camera's direction sample, normalized per sensor: 1/(A cos^3).
 // BDPT's MIS compares it with light-path densities; with one light path per camera sample the
-// per-pixel factor W*H appears on both sides and cancels (pitfall 1 of light tracing).
+// per-pixel factor W*H appears on both sides and cancels (forgetting it was pbrt-v4 #347, #456).
 // A direction the camera sampled at the film's border must not read as outside after the round
 // trip through normalize and projection, hence a slack of 1e-5 of the image's half-size.
 inline float pdfCameraDirection(const Camera& cam, Vec3 dir) {
@@ -927,7 +933,7 @@ inline float pdfCameraDirection(const Camera& cam, Vec3 dir) {
 //   camera     ex ey ez  lx ly lz  ux uy uz  fov  width height
 //   material   NAME diffuse R G B | mirror R G B | glass IOR | glossy R G B EXPONENT
 //   sphere     cx cy cz  radius  MATERIAL  [emit R G B] [inside] [bump AMPLITUDE FREQUENCY]
-//   quad       qx qy qz  ux uy uz  vx vy vz  MATERIAL  [emit R G B] [bump AMPLITUDE FREQUENCY]
+//   quad       qx qy qz  ux uy uz  vx vy vz  MATERIAL  [emit R G B] [bump AMPLITUDE FREQUENCY] [tilt DEGREES]
 //   pointlight x y z  R G B
 //   exposure   STOPS   (the PNG's default brightness, 2^STOPS; --exposure overrides it)
 // Every mistake is reported as "file:line: message" and the program exits with status 2.
@@ -1054,9 +1060,17 @@ struct SceneParser {
                 s.bumpFrequency = number("bump frequency");
                 if (s.bumpAmplitude < 0 || s.bumpAmplitude > 10) fail("bump amplitude must lie in [0, 10]");
                 if (!(s.bumpFrequency > 0)) fail("bump frequency must be > 0");
+                if (s.tiltedNormal.x != 0 || s.tiltedNormal.y != 0 || s.tiltedNormal.z != 0)
+                    fail("tilt and bump both given: a quad has one shading normal");
+            } else if (opt == "tilt" && s.type == Shape::Quad) {
+                float degrees = number("tilt angle (degrees)");
+                if (!(degrees > -90 && degrees < 90)) fail("tilt angle must lie between -90 and 90 degrees");
+                float a = degrees * kPi / 180;
+                s.tiltedNormal = normalize(std::cos(a) * s.normal + std::sin(a) * normalize(s.u));
+                if (s.bumpAmplitude > 0) fail("tilt and bump both given: a quad has one shading normal");
             } else {
                 fail("unknown option '" + printable(opt) + "' (emit, bump" +
-                     (s.type == Shape::Sphere ? ", inside)" : ")"));
+                     (s.type == Shape::Sphere ? ", inside)" : ", tilt)"));
             }
         }
     }
@@ -1324,8 +1338,8 @@ inline Vec3 radianceNEE(const Scene& scene, const RenderOptions& opt, Ray ray, R
 
 // -- The camera connection shared by light tracing and BDPT's t=1 strategy. For a point x seen
 // by the pinhole, W_j(x->eye) G(x,eye) with the camera-side cosine: W_j cos_cam / d^2, divided by
-// the number of light paths per pass (one per pixel, so the W*H in W_j cancels it: pitfall 1 of
-// light tracing is to forget either). The scene-side cosine stays with the caller (section 4).
+// the number of light paths per pass (one per pixel, so the W*H in W_j cancels it; forgetting
+// either is light tracing's classic bug, pbrt-v4 #347 and #456). The scene-side cosine stays with the caller (section 4).
 struct CameraConnection {
     int pixel = -1;          // -1: behind the camera, outside the image, or occluded
     Vec3 toCamera;           // unit direction from x to the pinhole
@@ -1558,7 +1572,7 @@ inline void traceLightPath(const Scene& scene, const RenderOptions& opt, Rng& rn
 //   sum_VPL  beta_y / N  f_y(y->x) f_x(y->x->eye) G(x,y) V(x,y)
 // Unbiased for the paths it can make, but G = cos cos / d^2 is unbounded where x and y come close
 // (corners): the bright splotches of panel (d). --clamp C replaces G by min(G, C): panel (e),
-// smooth but darker, and the loss does not shrink with more passes (bias, pitfall 5).
+// smooth but darker, and the loss does not shrink with more passes (bias; pbrt-v3 #73 met the same 1/d^2).
 struct Vpl {
     PathVertex y;       // a light-subpath vertex, its beta divided by the number of VPL paths
     int bounces = 0;    // scattering vertices before y on its light path
@@ -1647,7 +1661,8 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 // (vcm, section (g), adds one term per vertex to the walk and the sums: the merge there.)
 // Delta events (mirror, glass, point light) are stored as density 1 (the same delta appears in
 // every strategy's density and cancels), and a strategy that would have to connect at a delta
-// vertex or hit a point light is skipped: its density is 0 (pitfall 4). The walk is in double:
+// vertex or hit a point light is skipped: its density is 0 (counting it gave single fireflies
+// of 80,000x in Mitsuba #132, and in pbrt-v4 #326 and SmallVCM #5). The walk is in double:
 // with sharp lobes near corners one density reaches 1e-31 and another 1e+8, and in float the
 // cached sums overflowed to inf beside ratios that underflowed to 0 (0 x inf = NaN, a lost sample).
 // Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues
@@ -2476,6 +2491,36 @@ inline bool writePNG(const Image& img, const std::string& path, float exposure) 
     return writePNGBytes(toSRGBBytes(img, exposure), img.width, img.height, path);
 }
 
+// Where two methods differ: the ratio A/B of the two images' means over blocks of block x block
+// pixels (the blocks average the noise away), as a false-colour image that is white where A = B,
+// redder where A is brighter and bluer where darker, saturating at one stop; dark grey where
+// both are black. Each block's pixels hold its ratio (the PFM).
+inline Image blockRatio(const Image& a, const Image& b, int block) {
+    Image r(a.width, a.height);
+    for (int by = 0; by < a.height; by += block)
+        for (int bx = 0; bx < a.width; bx += block) {
+            double sa = 0, sb = 0;
+            for (int y = by; y < std::min(a.height, by + block); ++y)
+                for (int x = bx; x < std::min(a.width, bx + block); ++x)
+                    sa += double(a.at(x, y).x) + a.at(x, y).y + a.at(x, y).z, sb += double(b.at(x, y).x) + b.at(x, y).y + b.at(x, y).z;
+            float ratio = sb > 0 ? float(sa / sb) : sa > 0 ? kInf : std::numeric_limits<float>::quiet_NaN();
+            for (int y = by; y < std::min(a.height, by + block); ++y)
+                for (int x = bx; x < std::min(a.width, bx + block); ++x) r.at(x, y) = Vec3(ratio);
+        }
+    return r;
+}
+
+inline Image ratioColours(const Image& ratio) {
+    Image c(ratio.width, ratio.height);
+    for (size_t i = 0; i < ratio.pixels.size(); ++i) {
+        float q = ratio.pixels[i].x;
+        if (std::isnan(q)) { c.pixels[i] = Vec3(0.03f); continue; }
+        float t = std::max(-1.0f, std::min(1.0f, q > 0 ? std::log2(q) : -1.0f));
+        c.pixels[i] = t >= 0 ? Vec3(1, 1 - t, 1 - t) : Vec3(1 + t, 1 + t, 1);
+    }
+    return c;
+}
+
 // Labels for the strategy pyramid: a 3x5 pixel font of the few characters it needs.
 inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, int x0, int y0, const std::string& text, int scale) {
     static const std::map<char, const char*> glyphs = {
@@ -2483,7 +2528,7 @@ inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, in
         {'4', "101101111001001"}, {'5', "111100111001111"}, {'6', "111100111101111"}, {'7', "111001001001001"},
         {'8', "111101111101111"}, {'9', "111101111001111"}, {'s', "011100010001110"}, {'t', "010111010010011"},
         {'=', "000111000111000"}, {' ', "000000000000000"}, {'k', "100101110101101"},
-        {'m', "000110111101101"}};
+        {'m', "000110111101101"}, {'+', "000010111010000"}};
     for (size_t i = 0; i < text.size(); ++i) {
         auto g = glyphs.find(text[i]);
         if (g == glyphs.end()) continue;
@@ -2514,6 +2559,23 @@ inline std::string replaceExtension(const std::string& path, const std::string& 
     return (hasExt ? path.substr(0, dot) : path) + ext;
 }
 
+// The pyramid's rows differ by orders of magnitude (each bounce keeps about the albedo), so each
+// row k is brightened by whole stops until its light, the sum of its weighted tiles, comes within
+// half a stop of the brightest row's; the tile's label prints them ("s1 t3 +2").
+inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
+    const bool merges = int(r.strategyImages.size()) > maxLength * (maxLength + 3);
+    std::vector<double> rowMean(maxLength + 1, 0);
+    for (int k = 1; k <= maxLength; ++k) {
+        for (int s = 0; s <= k; ++s) rowMean[k] += imageMean(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1]);
+        if (merges && k > 1) rowMean[k] += imageMean(r.strategyImages[2 * mergeImageIndex(k, maxLength) + 1]);
+    }
+    double brightest = *std::max_element(rowMean.begin(), rowMean.end());
+    std::vector<int> stops(maxLength + 1, 0);
+    for (int k = 1; k <= maxLength; ++k)
+        if (rowMean[k] > 0) stops[k] = std::min(12, int(std::lround(std::log2(brightest / rowMean[k]))));
+    return stops;
+}
+
 // The slides' "Contributions of different paths" as a pyramid: row k = path length (segments),
 // column s = vertices from the light (t = k+1-s from the camera), one image per strategy p_{k,s}.
 inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
@@ -2521,6 +2583,7 @@ inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std:
     const int W = r.image.width, H = r.image.height, gap = 4;
     const bool merges = int(r.strategyImages.size()) > maxLength * (maxLength + 3);  // vcm: a column "m k" of merges
     const int canvasW = (maxLength + 1 + merges) * (W + gap) + gap, canvasH = maxLength * (H + gap) + gap;
+    const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
     bool ok = true;
     for (int weighted = 0; weighted < 2; ++weighted) {
         std::vector<unsigned char> canvas(size_t(canvasW) * canvasH * 3, 40);
@@ -2530,20 +2593,26 @@ inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std:
                 bool merge = s == k + 1;
                 if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
                 const Image& img = r.strategyImages[2 * (merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, t)) + weighted];
-                std::string label = merge ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(t);
+                std::string label = (merge ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(t)) +
+                                    (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
                 std::string name = dir + (merge ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(t)) +
                                    (weighted ? "_weighted" : "_unweighted");
                 ok = ok && writePNG(img, name + ".png", exposure) && writePFM(img, name + ".pfm");
-                std::vector<unsigned char> tile = toSRGBBytes(img, exposure);
+                std::vector<unsigned char> tile = toSRGBBytes(img, exposure + rowStops[k]);
                 int x0 = gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap), y0 = gap + (k - 1) * (H + gap);
                 for (int y = 0; y < H; ++y)
                     std::copy(tile.begin() + 3 * size_t(y) * W, tile.begin() + 3 * size_t(y + 1) * W,
                               canvas.begin() + 3 * (size_t(y0 + y) * canvasW + x0));
-                drawLabel(canvas, canvasW, canvasH, x0 + 3, y0 + 3, label, std::max(1, H / 64));
+                drawLabel(canvas, canvasW, canvasH, x0 + 3, y0 + 3, label, std::max(1, std::min(W / 40, H / 32)));
             }
         std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
         ok = ok && writePNGBytes(canvas, canvasW, canvasH, pyramid);
         if (ok) out << "wrote " << pyramid << "\n";
+    }
+    if (ok) {
+        out << "pyramid rows k = 1.." << maxLength << " brightened by";
+        for (int k = 1; k <= maxLength; ++k) out << " +" << rowStops[k];
+        out << " stops (printed in each tile)\n";
     }
     return ok;
 }
@@ -2643,12 +2712,14 @@ Method
                     and two pyramid montages, into DIR
   --strategy-length K  longest path (segments) with per-strategy images (default 5)
   --maxdepth D      at most D bounces (scattering vertices) per path (default 32)
-  --roulette R      lt, ir, bdpt, vcm: how subpaths end: throughput (q from the throughput after 3
-                    bounces, as pt and nee), albedo (q = the material's albedo at every vertex,
-                    counted in bdpt's MIS densities) or off (only --maxdepth)
+  --roulette R      lt, ir, bdpt, vcm: how subpaths end: throughput (q from the throughput after
+                    --rr-start bounces, as pt and nee), albedo (q = the material's albedo at every
+                    vertex, counted in bdpt's MIS densities) or off (only --maxdepth)
+  --rr-start N      pt, nee (and --roulette throughput): Russian roulette from bounce N on
+                    (default 3); N > --maxdepth turns it off (lecture notes, page 9)
 Deliberate mistakes (slides: "Non-symmetric scattering")
-  --symmetric-refraction   reuse one BTDF for both transports: eye paths scale refracted
-                    radiance like power (no eta^2), light paths scale power like radiance
+  --symmetric-refraction   swap the two refraction rules: eye paths scale refracted radiance
+                    like power (no eta^2), light paths scale power like radiance (eta^2)
   --no-adjoint-correction  light paths use the shading-normal BSDF unchanged (not its adjoint)
   --fixed-ray-offset       push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)
                     instead of the hit point's error bound (see tests/thin-gap.scene)
@@ -2672,6 +2743,9 @@ Speed against accuracy
                     mean, bias, firefly, nan_count (error columns empty without --ref)
   --compare A.pfm B.pfm  print rmse, relmse and bias of A against B (e.g. two seeds of a reference)
   --average A.pfm B.pfm  write the mean of A and B to --out (and its PFM): a reference from two seeds
+  --ratio A.pfm B.pfm    write A/B over 4x4-pixel blocks to --out in false colour (white: equal,
+                    red: A brighter, blue: A darker, full colour at one stop; the PFM holds the
+                    ratios) and print its percentiles: where two methods differ
   --failure-table LOG.csv...  print the README's failure table (markdown) from such logs:
                     slope of log(rmse) against log(seconds), bias, fireflies, NaN count
 Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene
@@ -2688,8 +2762,9 @@ struct CommandLine {
     double radius = -1;          // vcm --radius; < 0: not given
     std::string strategiesDir, refPath, logPath;
     std::vector<std::string> failureLogs;
-    std::string pfmA, pfmB;  // --compare or --average: the two images
+    std::string pfmA, pfmB;  // --compare, --average or --ratio: the two images
     bool average = false;    // --average: write their mean to out
+    bool ratio = false;      // --ratio: write their block ratio to out
     bool exposureGiven = false;  // else the scene's exposure directive sets it
 };
 
@@ -2759,6 +2834,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (a == "--no-adjoint-correction") cl.noAdjointCorrection = true;
         else if (a == "--fixed-ray-offset") cl.fixedRayOffset = true;
         else if (a == "--maxdepth") cl.opt.maxDepth = int(integer(i, 0, 10000));
+        else if (a == "--rr-start") cl.opt.rrStart = int(integer(i, 0, 10001));
         else if (a == "--spp") cl.opt.spp = int(integer(i, 1, 1e8));
         else if (a == "--time") cl.opt.seconds = number(i, 1e-3, 1e7);
         else if (a == "--seed") cl.opt.seed = uint64_t(integer(i, 0, 9e15));
@@ -2768,8 +2844,9 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (a == "--quiet") cl.opt.quiet = true;
         else if (a == "--ref") cl.refPath = value(i);
         else if (a == "--log") cl.logPath = value(i);
-        else if (a == "--compare" || a == "--average") {
+        else if (a == "--compare" || a == "--average" || a == "--ratio") {
             cl.average = a == "--average";
+            cl.ratio = a == "--ratio";
             cl.pfmA = value(i);
             cl.pfmB = value(i);
         } else if (a == "--failure-table") {
@@ -2812,6 +2889,11 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
     onlyFor("--no-adjoint-correction", {Method::LT, Method::IR, Method::BDPT, Method::VCM},
             "the methods that trace light paths (lt, ir, bdpt, vcm)");
     if (given.count("--strategy-length") && cl.strategiesDir.empty()) fail("--strategy-length applies with --strategies DIR");
+    // Only the throughput rule has a start: the albedo rule acts from the first bounce on.
+    bool throughputRoulette = cl.opt.method == Method::PT || cl.opt.method == Method::NEE || cl.opt.roulette == Roulette::Throughput;
+    if (given.count("--rr-start") && !throughputRoulette)
+        fail(std::string("--rr-start applies to pt, nee and --roulette throughput; --method ") + methodName(cl.opt.method) +
+             " ends its subpaths by --roulette albedo (the default), from the first bounce on");
     if (given.count("--time") && given.count("--spp"))
         fail("--time and --spp both given: --time renders passes until the time is up, --spp a number of them; give one");
     if (!cl.strategiesDir.empty()) cl.opt.strategyMaxLength = cl.strategyLength;
@@ -2918,7 +3000,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         if (!cl.pfmA.empty()) {
             Image a, b;
             if (!readPFM(cl.pfmA, a) || !readPFM(cl.pfmB, b) || a.width != b.width || a.height != b.height) {
-                err << "bdpt: cannot " << (cl.average ? "average " : "compare ") << cl.pfmA << " and " << cl.pfmB
+                err << "bdpt: cannot " << (cl.average ? "average " : cl.ratio ? "divide " : "compare ") << cl.pfmA << " and " << cl.pfmB
                     << " (two PFMs of one size)\n";
                 return 2;
             }
@@ -2926,6 +3008,24 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
                 for (size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = (a.pixels[i] + b.pixels[i]) * 0.5f;
                 std::string pfm = replaceExtension(cl.out, ".pfm");
                 if (writePNG(a, cl.out, cl.opt.exposure) && writePFM(a, pfm)) return 0;
+                err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
+                return 1;
+            }
+            if (cl.ratio) {
+                Image r = blockRatio(a, b, 4);
+                std::vector<float> q;
+                for (const Vec3& p : r.pixels)
+                    if (std::isfinite(p.x)) q.push_back(p.x);
+                std::sort(q.begin(), q.end());
+                auto pct = [&](double f) { return q.empty() ? 0.0f : q[size_t(f * (q.size() - 1))]; };
+                size_t off = size_t(std::count_if(q.begin(), q.end(), [](float v) { return std::fabs(std::log2(v)) > 0.5f; }));
+                out << "ratio of means " << imageMean(a) / imageMean(b) << "; A/B over 4x4 blocks: 5% " << pct(0.05)
+                    << ", median " << pct(0.5) << ", 95% " << pct(0.95) << "; " << 100.0 * off / std::max<size_t>(1, q.size())
+                    << "% of the blocks more than half a stop apart\n";
+                std::string pfm = replaceExtension(cl.out, ".pfm");
+                Image colours = ratioColours(r);
+                for (Vec3& p : r.pixels) p = std::isfinite(p.x) ? p : Vec3(0);  // the PFM: 0 where undefined
+                if (writePNG(colours, cl.out, 0) && writePFM(r, pfm)) return 0;
                 err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
                 return 1;
             }

@@ -4,7 +4,8 @@
 #   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts
 #                             in lecture_notes/figures/, and the failure table in Appendix A of the notes
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time,
-#                             the thin-gap figure, and sds-point by pt, bdpt and vcm (sds-vcm.png)
+#                             the thin-gap figure, sds-point by pt, bdpt and vcm (sds-vcm.png), the
+#                             combination-of-estimators example and the furnace's series
 #   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
 #   tests/charts.sh tables    the failure table and the reference check from the runs' logs
 #   tests/charts.sh refcheck  the references' noise against the charted errors (also run by charts)
@@ -209,6 +210,67 @@ bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
   done
   thingap
   sds
+  estimators
+  furnaceseries
+}
+
+# Page 10's "Combination of Estimators: Example": four paths of k = 2 segments on cornell, each
+# strategy X a rectangle of width p_X and height f/p_X (both relative to the widest), so all three
+# have the path's f as their area; max keeps the filled one, balance shares by width.
+estimators() {
+  make -s build/estimators
+  local rows="62 78 94 150" ymax=4
+  ./build/estimators $rows > "$LOGS/estimators.txt"
+  {
+    echo 'set terminal pngcairo size 1000,760 font "sans,11"'
+    echo "set output '$FIG/combination-of-estimators.png'"
+    echo "set multiplot layout 2,2 title \"cornell: four paths of k = 2 segments, lamp centre -> the point seen in image row R of the middle column -> eye\\nA = p_{2,0} (a BSDF sample hits the lamp), B = p_{2,1} (next event), C = p_{2,2} (light tracing); filled: the one max keeps\" font ',11'"
+    echo "set xrange [0:3.6]; set yrange [0:$ymax]; unset xtics; set ytics 1; set key off; set tmargin 4; set bmargin 3"
+    echo "set xlabel 'width: p_X / largest p' offset 0,-0.5; set ylabel 'height: (f/p_X) / (f/largest p)'"
+    grep -v '^#' "$LOGS/estimators.txt" | while read -r row surface pa pb pc wa wb wc best; do
+      echo "unset object; unset label"
+      x=0.1 i=1
+      for X in A B C; do
+        case $X in A) p=$pa w=$wa ;; B) p=$pb w=$wb ;; C) p=$pc w=$wc ;; esac
+        h=$(awk -v p="$p" -v m="$ymax" 'BEGIN { h = 1 / p; print (h > m ? m : h) }')
+        x2=$(awk -v x="$x" -v p="$p" 'BEGIN { print x + p }')
+        fill="fs empty border lc rgb '#333333'"; [ "$X" = "$best" ] && fill="fc rgb '#d55e00' fs solid 0.8 border lc rgb '#333333'"
+        echo "set object $i rect from $x,0 to $x2,$h $fill"
+        echo "set label $i '$X' at $(awk -v a="$x" -v b="$x2" 'BEGIN { print (a + b) / 2 }'),-0.2 center font ',11'"
+        echo "set label $((i + 3)) '$X: width $(printf %.3g "$p"), height $(awk -v p="$p" 'BEGIN { printf (1 / p >= 100 ? "%.0f" : "%.3g"), 1 / p }'), balance $(printf %.3f "$w")' at graph 0.3,graph $(awk -v i=$i 'BEGIN { print 1.0 - 0.07 * i }') font ',10'"
+        x=$(awk -v x="$x2" 'BEGIN { print x + 0.15 }')
+        i=$((i + 1))
+      done
+      echo "set title 'row $row ($surface): max keeps $best' offset 0,-0.3"
+      echo "plot -1 notitle"
+    done
+    echo 'unset multiplot'
+  } | gnuplot
+  echo "figure $FIG/combination-of-estimators.png"
+}
+
+# Page 4's von Neumann series in the furnace: the image mean after D bounces against its partial
+# sum Le (1 - a^(D+1)) / (1 - a), a = 0.5 (pt is exact there: no roulette before 3 bounces, and
+# cosine sampling gives every path the same weight).
+furnaceseries() {
+  mkdir -p "$LOGS/fig"
+  : > "$LOGS/furnace-series.txt"
+  for d in 0 1 2 3 4 5 6 7 8; do
+    mean=$(./bdpt scenes/furnace.scene --method pt --maxdepth $d --rr-start 99 --spp 4 --res 32x32 --out "$LOGS/fig/furnace-$d.png" | sed -n 's/.* mean \([0-9.e+-]*\),.*/\1/p')
+    echo "$d $mean" >> "$LOGS/furnace-series.txt"
+  done
+  {
+    echo 'set terminal pngcairo size 640,400 font "sans,11"'
+    echo "set output '$FIG/furnace-series.png'"
+    echo "set title 'the furnace (albedo a = 0.5, Le = 1), term by term'"
+    echo "set xlabel '--maxdepth D (the series kept up to the term of D bounces)'; set ylabel 'image mean'"
+    echo "set key bottom right; set yrange [0:2.2]; set xrange [-0.3:8.3]; set grid"
+    echo "plot (1 - 0.5**(floor(x + 0.5) + 1)) / 0.5 with steps lc rgb '#999999' title 'Le (1 - a^{D+1}) / (1 - a)', \\"
+    echo "     2 with lines dt 2 lc rgb '#999999' title 'Le / (1 - a) = 2', \\"
+    echo "     '$LOGS/furnace-series.txt' using 1:2 with points pt 7 ps 1.5 lc rgb '#000000' title 'pt, image mean', \\"
+    echo "     '' using 1:2:(sprintf('%.4g', \$2)) with labels offset 0,1.2 font ',9' notitle"
+  } | gnuplot
+  echo "figure $FIG/furnace-series.png"
 }
 
 # The companion of the six panels, for the slides' "VCM, later": sds-point, whose light reaches
@@ -257,10 +319,18 @@ ltfixed|lt, --fixed-ray-offset|--method lt --fixed-ray-offset"
   echo "figure $FIG/thin-gap.png"
 }
 
-notes() {  # every command shown in the lecture notes, exactly as shown
+notes() {  # every figure of the pages, by the commands they show
+  # The pages' commands write into build/notes/ (a student's run never touches the committed
+  # figures); here each output that a page shows as figures/NAME is moved into $FIG instead.
   grep -h '^\./bdpt ' lecture_notes/*.md | while read -r cmd; do
+    for path in $(echo "$cmd" | grep -o 'build/notes/[^ ]*'); do
+      name=${path#build/notes/}
+      stem=${name%.*}
+      if grep -q "(figures/$stem\.png)\|(figures/$name/" lecture_notes/*.md; then cmd=${cmd//$path/$FIG/$name}; fi
+    done
     dir=$(echo "$cmd" | sed -n 's/.*--strategies \([^ ]*\).*/\1/p')
     [ -n "$dir" ] && mkdir -p "$dir"
+    mkdir -p build/notes
     echo "$cmd"
     # shellcheck disable=SC2086
     $cmd --quiet

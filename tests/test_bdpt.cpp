@@ -181,6 +181,43 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
 
 static Scene smallScene(const std::string& file) { return sceneAt(file, 16, 16); }
 
+// The slides' "Implementation: Example: Maximums Heuristics" as a reference implementation: every
+// strategy's sample SP adds SP.f / p with p = max over estimators of Probability(SP, estimator),
+// computed from scratch. Literally, every strategy adds it; corrected (lecture notes, page 10),
+// only the strategy whose own density is that maximum does (ties share, as misWeight's max).
+// Returns the estimate of the image mean: camera contributions and splats alike, per sample.
+static double slideMaxEstimate(const Scene& scene, int samples, bool literal) {
+    RenderOptions opt = quietOptions(Method::BDPT, 1, 31);
+    opt.maxDepth = 12;
+    std::vector<PathVertex> camera, light, y, z;
+    double total = 0;
+    for (int i = 0; i < samples; ++i) {
+        Rng rng = makeRng(31, uint64_t(i), 7);
+        cameraSubpath(scene, opt, rng.uniform() * scene.camera.width, rng.uniform() * scene.camera.height, rng, camera);
+        lightSubpath(scene, opt, rng, light);
+        for (int t = 1; t <= int(camera.size()); ++t)
+            for (int s = 0; s <= int(light.size()); ++s) {
+                if (s + t < 2 || s + t - 2 > opt.maxDepth) continue;
+                int pixel = 0;
+                Connection connection;
+                Vec3 c = connectStrategy(scene, light, s, camera, t, connection, pixel);  // SP.f / p_s
+                if (isBlack(c)) continue;
+                std::vector<PathVertex> x = joinPath(light, s, camera, t);
+                std::map<int, double> density;
+                for (int s2 = 0; s2 < int(x.size()); ++s2) {
+                    if (!able(scene, x, s2)) continue;
+                    rebuild(scene, x, s2, Heuristic::Max, y, z);
+                    density[s2] = pathDensity(y, z);  // Probability(SP, estimator s2)
+                }
+                double pMax = 0;
+                for (auto [s2, p] : density) pMax = std::max(pMax, p);
+                double share = literal ? density.at(s) / pMax : definitionWeight(Heuristic::Max, density, s);
+                total += (c.x + c.y + c.z) / 3 * share;  // SP.f / p_max = (SP.f / p_s) (p_s / p_max)
+            }
+    }
+    return total / samples;
+}
+
 TEST_CASE("MIS: the weights of all strategies able to make a path sum to 1 and follow each heuristic's definition") {
     Scene glossy = parseScene("camera 0 1 -4  0 1 0  0 1 0  50  16 16\n"
                               "material white diffuse 0.8 0.8 0.8\nmaterial shiny glossy 0.9 0.9 0.9 20\n"
@@ -208,6 +245,18 @@ TEST_CASE("MIS: the weights of all strategies able to make a path sum to 1 and f
                 CHECK(wc.worstDefinition < 1e-3);
             }
         }
+}
+
+TEST_CASE("the slides' maximum-heuristic pseudo-code: literally it overcounts the furnace, corrected it gives 2") {
+    Scene furnace = smallScene("scenes/furnace.scene");  // exact: 2 (1 - 0.5^13) with at most 12 bounces
+    double literal = slideMaxEstimate(furnace, 3000, true), corrected = slideMaxEstimate(furnace, 3000, false);
+    MESSAGE("furnace, the slide's loop: literal " << literal << ", corrected " << corrected << " (exact 2)");
+    CHECK(corrected == doctest::Approx(2.0).epsilon(0.02));
+    CHECK(literal > 3.0);  // 3.2 here: paths of k segments counted by up to k + 1 strategies
+    // The renderer's max heuristic is the corrected loop.
+    RenderOptions o = quietOptions(Method::BDPT, 64, 32);
+    o.heuristic = Heuristic::Max;
+    CHECK(imageMean(render(furnace, o).image) == doctest::Approx(corrected).epsilon(0.02));
 }
 
 // The same check for vcm: connections and merges together. mergeEta = pi r^2 N_light with the
@@ -408,6 +457,24 @@ TEST_CASE("--strategies writes every (s,t) image, weighted and not, and the two 
     CHECK(se2.str().find("--strategies applies to --method bdpt and vcm, not to --method nee") != std::string::npos);
     CHECK(runCommandLine({"scenes/cornell.scene", "--heuristic", "best"}, so2, se2) == 2);
     CHECK(se2.str().find("unknown heuristic 'best'") != std::string::npos);
+}
+
+TEST_CASE("the pyramid's rows are brightened to within half a stop of the brightest row") {
+    Scene scene = sceneAt("scenes/cornell.scene", 16, 16);
+    RenderOptions o = quietOptions(Method::BDPT, 16, 93);
+    o.strategyMaxLength = 5;
+    RenderResult r = render(scene, o);
+    std::vector<int> stops = pyramidRowStops(r, 5);
+    std::vector<double> row(6, 0);
+    for (int k = 1; k <= 5; ++k)
+        for (int s = 0; s <= k; ++s) row[k] += imageMean(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1]);
+    double brightest = *std::max_element(row.begin(), row.end());
+    for (int k = 1; k <= 5; ++k) {
+        CAPTURE(k);
+        CHECK(stops[k] >= 0);
+        CHECK(std::abs(std::log2(brightest / (row[k] * std::exp2(stops[k])))) <= 0.5 + 1e-9);
+    }
+    CHECK(stops[5] >= 3);  // cornell keeps about half the light per bounce
 }
 
 TEST_CASE("every heuristic gives Le/(1-a) = 2 in the furnace (ties between equal densities are shared)") {

@@ -163,6 +163,27 @@ TEST_CASE("rays are counted per method; Russian roulette: throughput after 3 bou
     CHECK(total / (2 * n) == doctest::Approx(2.0).epsilon(0.03));
 }
 
+TEST_CASE("Russian roulette is the furnace's only noise: pt without it (--rr-start > --maxdepth) is exact") {
+    // Cosine sampling of a diffuse albedo a gives every bounce the weight a: without roulette
+    // every camera path carries exactly Le (1 - a^(D+1)) / (1 - a), and all noise is roulette's.
+    Scene scene = sceneAt("scenes/furnace.scene", 16, 16);
+    RenderOptions o = quietOptions(Method::PT, 16, 94);
+    o.maxDepth = 32;
+    auto spread = [&](int rrStart) {
+        o.rrStart = rrStart;
+        RenderResult r = render(scene, o);
+        double worst = 0;
+        for (const Vec3& p : r.image.pixels) worst = std::max(worst, std::abs(double(p.x) - 2.0));
+        return worst;
+    };
+    CHECK(spread(33) < 1e-5);
+    CHECK(spread(3) > 0.05);
+    CHECK(spread(0) > spread(8));  // an earlier start: fewer rays, more noise
+    std::ostringstream so, se;
+    CHECK(runCommandLine({"scenes/furnace.scene", "--method", "bdpt", "--rr-start", "5"}, so, se) == 2);
+    CHECK(se.str().find("--rr-start applies to pt, nee and --roulette throughput") != std::string::npos);
+}
+
 TEST_CASE("pt and nee (with and without MIS) agree on cornell within statistical error") {
     Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
     RegionEstimate pt = renderRegions(scene, quietOptions(Method::PT, 2048, 11), 4);

@@ -43,6 +43,29 @@ TEST_CASE("--average: the mean of two references, and refusal of images of diffe
     CHECK(!fileExists("build/tmp_avg2.pfm"));
 }
 
+TEST_CASE("--ratio: A/B over 4x4 blocks, in false colour, with its percentiles") {
+    Image b = constantImage(8, 8, 1), a = constantImage(8, 8, 1);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) a.at(x, y) = Vec3(2);  // rows 0-3 twice as bright
+    a.at(0, 7) = Vec3(1 + 16);                               // one noisy pixel: its block's mean 2
+    for (int y = 4; y < 8; ++y) b.at(7, y) = a.at(7, y) = Vec3(0);  // an undefined column
+    REQUIRE(writePFM(a, "build/tmp_ratio_a.pfm"));
+    REQUIRE(writePFM(b, "build/tmp_ratio_b.pfm"));
+    std::ostringstream so, se;
+    CHECK(runCommandLine({"--ratio", "build/tmp_ratio_a.pfm", "build/tmp_ratio_b.pfm", "--out", "build/tmp_ratio.png"}, so, se) == 0);
+    Image r;
+    REQUIRE(readPFM("build/tmp_ratio.pfm", r));
+    CHECK(r.at(1, 1).x == doctest::Approx(2.0));
+    CHECK(r.at(6, 2).x == doctest::Approx(2.0));
+    CHECK(r.at(3, 5).x == doctest::Approx(2.0));   // the noisy pixel's block: (15 + 17) / 16
+    CHECK(r.at(5, 5).x == doctest::Approx(1.0));   // 12 / 12: the black column is left out of both
+    Image colours = ratioColours(blockRatio(a, b, 4));
+    CHECK(colours.at(0, 0).x == 1.0f);
+    CHECK(colours.at(0, 0).y == 0.0f);             // one stop brighter: full red
+    CHECK(colours.at(5, 5).y == 1.0f);             // equal: white
+    CHECK(so.str().find("% of the blocks more than half a stop apart") != std::string::npos);
+}
+
 TEST_CASE("the failure table: slope of log(rmse) against log(time), last bias, fireflies and NaNs") {
     std::ofstream a("build/tmp_converges.csv"), b("build/tmp_biased.csv");
     a << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count\n";

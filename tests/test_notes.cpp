@@ -1,6 +1,7 @@
 // The lecture notes cannot rot: every function they cite exists in bdpt.cpp, every command they
-// show runs (at 1 sample per pixel and 8x8 pixels), every make target exists, every figure they
-// show is in lecture_notes/figures/. (Issue: lecture notes.)
+// show runs (at 1 sample per pixel and 8x8 pixels) and writes into build/, every make target
+// exists, every figure they show is in lecture_notes/figures/, and the formulas they state are
+// the ones the code computes. (Issues: lecture notes; lecture notes, second edition.)
 #include "helpers.h"
 #include <dirent.h>
 #include <regex>
@@ -80,6 +81,189 @@ TEST_CASE("every command the notes show runs") {
         }
     }
     CHECK(commands >= 20);
+}
+
+TEST_CASE("the commands the notes show write into build/, never over the committed figures") {
+    int outputs = 0;
+    for (const std::string& page : notePages()) {
+        std::istringstream in(slurp(page));
+        for (std::string line; std::getline(in, line);) {
+            if (line.rfind("./bdpt ", 0) != 0) continue;
+            std::istringstream words(line);
+            std::vector<std::string> w;
+            for (std::string x; words >> x;) w.push_back(x);
+            for (size_t i = 0; i + 1 < w.size(); ++i)
+                if (w[i] == "--out" || w[i] == "--strategies") {
+                    CAPTURE(page);
+                    CAPTURE(line);
+                    CHECK(w[i + 1].rfind("build/", 0) == 0);
+                    ++outputs;
+                }
+        }
+    }
+    CHECK(outputs >= 30);
+}
+
+// -- The formulas the pages state, checked against the code -----------------------------------
+// Each check finds the formula on its page, as written, and evaluates it beside the code: a page
+// edited to a wrong formula fails the first half, a code change that breaks it the second.
+static bool pageSays(const std::string& page, const std::string& formula) {
+    return slurp("lecture_notes/" + page).find(formula) != std::string::npos;
+}
+
+TEST_CASE("notes, page 5: the pinhole's p_omega = 1/(A cos^3), W_e cos / p_omega = 1, W_j = width height/(A cos^4)") {
+    CHECK(pageSays("05-generating-paths.md", "p_omega = 1/(A cos^3 theta)"));
+    CHECK(pageSays("05-generating-paths.md", "W_e = 1/(A cos^4 theta) makes W_e cos/p_omega = 1"));
+    CHECK(pageSays("05-generating-paths.md", "W_j = width height/(A cos^4 theta)"));
+    Scene scene = sceneAt("scenes/cornell.scene", 48, 32);
+    const Camera& cam = scene.camera;
+    Rng rng = makeRng(3, 0, 0);
+    double worst = 0;
+    for (int i = 0; i < 1000; ++i) {
+        Vec3 d = cameraRay(cam, rng.uniform() * cam.width, rng.uniform() * cam.height).d;
+        double c = dot(d, cam.forward), A = cam.imageArea;
+        double pOmega = pdfCameraDirection(cam, d), Wj = pixelImportance(cam, d), We = Wj / (cam.width * cam.height);
+        worst = std::max({worst, std::fabs(pOmega * A * c * c * c - 1), std::fabs(We * c / pOmega - 1),
+                          std::fabs(Wj * A * c * c * c * c / (cam.width * cam.height) - 1)});
+    }
+    CHECK(worst < 1e-4);
+}
+
+TEST_CASE("notes, page 5: a light path starts at Phi_light / P(light) = Phi") {
+    CHECK(pageSays("05-generating-paths.md", "= Phi_light / P(light) = Phi, the total power"));
+    for (const char* file : {"scenes/cornell.scene", "tests/two-lights.scene"}) {
+        Scene scene = sceneAt(file, 8, 8);
+        Rng rng = makeRng(4, 0, 0);
+        for (int i = 0; i < 200; ++i) {
+            EmissionSample es = sampleEmission(scene, rng);
+            CAPTURE(file);
+            CHECK(average(es.weight) == doctest::Approx(scene.totalPower).epsilon(1e-4));
+        }
+    }
+}
+
+TEST_CASE("notes, pages 7 and 10: p_{k,s+1}/p_{k,s} = pdfRev/pdfFwd of the vertex changing sides, and the heuristics' table") {
+    CHECK(pageSays("07-probabilities.md", "p_{k,s+1} / p_{k,s} = pdfRev(x_s) / pdfFwd(x_s)"));
+    CHECK(pageSays("10-combining-estimators.md", "| `balance` | 1/(1 + sum r_i) |"));
+    CHECK(pageSays("10-combining-estimators.md", "| `power` | 1/(1 + sum r_i^2) |"));
+    // Paths of k = 2 on cornell: x_0 on the lamp, x_1 what a pixel sees, x_2 the pinhole. The
+    // three strategies' densities as page 7 writes them, each vertex's from scratch:
+    //   p_0 = p_cam(x_1) q(x_1) p_bsdf(x_1 -> x_0),  p_1 = p_cam(x_1) p_light(x_0),
+    //   p_2 = p_light(x_0) p_emit(x_0 -> x_1),
+    // and misWeight's weight of next event (s = 1) and of light tracing (s = 2) against them.
+    Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
+    int lamp = scene.lights[0].shape;
+    RenderOptions opt = quietOptions(Method::BDPT, 1, 5);
+    std::vector<PathVertex> camera, light;
+    int checked = 0;
+    double worst = 0;
+    for (int i = 0; i < 400; ++i) {
+        Rng rng = makeRng(5, uint64_t(i), 0);
+        cameraSubpath(scene, opt, rng.uniform() * 32, rng.uniform() * 32, rng, camera);
+        lightSubpath(scene, opt, rng, light);
+        if (camera.size() < 2 || light.empty() || camera[1].delta) continue;
+        const SurfacePoint &x0 = light[0].sp, &x1 = camera[1].sp;
+        Vec3 d = x0.p - x1.p;
+        double dist2 = dot(d, d);
+        Vec3 w = d / std::sqrt(dist2);
+        double cos0 = -dot(scene.shapes[lamp].normal, w), cos1 = absDot(x1.ng, w);
+        if (cos0 <= 0 || occluded(scene, shadowRay(x1, x0))) continue;
+        Vec3 toX1 = x1.p - scene.camera.eye;
+        double camDist2 = dot(toX1, toX1);
+        Vec3 dirCam = toX1 / std::sqrt(camDist2);
+        double pCam = pdfCameraDirection(scene.camera, dirCam) * absDot(x1.ng, dirCam) / camDist2;
+        double pLight = pdfLightPoint(scene, lamp);
+        double p[3] = {pCam * albedoContinuation(scene, x1) * pdfBsdf(scene, x1, -dirCam, w) * cos0 / dist2, pCam * pLight,
+                       pLight * cos0 / kPi * cos1 / dist2};
+        if (!(p[1] > 0)) continue;
+        for (Heuristic h : {Heuristic::Balance, Heuristic::Power}) {
+            auto pw = [&](double x) { return h == Heuristic::Power ? x * x : x; };
+            double sum = pw(p[0]) + pw(p[1]) + pw(p[2]);
+            Connection c;
+            int pixel = 0;
+            if (isBlack(connectStrategy(scene, light, 1, camera, 2, c, pixel))) continue;
+            double w1 = misWeight(scene, light, 1, camera, 2, h, c);
+            worst = std::max(worst, std::fabs(w1 - pw(p[1]) / sum));
+            std::vector<PathVertex> lightPath = {light[0], camera[1]}, eye = {camera[0]};  // s = 2, t = 1
+            lightPath[1].type = PathVertex::Surface;
+            lightPath[1].wo = w;  // toward x_0, its predecessor on the light subpath
+            lightPath[1].prevDist2 = float(dist2);
+            lightPath[1].pdfFwd = p[2] / pLight;
+            lightPath[1].pdfRev = 0;
+            lightPath[1].continuation = albedoContinuation(scene, x1);
+            lightPath[0].pdfRev = 0;
+            Connection c2;
+            if (isBlack(connectStrategy(scene, lightPath, 2, eye, 1, c2, pixel))) continue;
+            double w2 = misWeight(scene, lightPath, 2, eye, 1, h, c2);
+            worst = std::max(worst, std::fabs(w2 - pw(p[2]) / sum));
+            ++checked;
+        }
+    }
+    CHECK(checked > 100);
+    CHECK(worst < 1e-3);
+}
+
+TEST_CASE("notes, pages 6 and 14: refraction scales radiance by (eta_o/eta_i)^2, importance by 1") {
+    CHECK(pageSays("06-extending-paths.md", "scales radiance by (eta_o/eta_i)^2 and importance not at all"));
+    CHECK(pageSays("14-power-versus-radiance.md", "L_o = (eta_o/eta_i)^2 L_i"));
+    Scene scene = singleQuadScene(makeMaterial(Material::Glass, 1, 1.5f));
+    SurfacePoint sp = surfaceAtOrigin();
+    Rng rng = makeRng(6, 0, 0);
+    int refractions = 0;
+    for (Vec3 wo : {normalize(Vec3(0.3f, 0, 1)), normalize(Vec3(0.3f, 0, -1))}) {  // from air, from glass
+        double etaO = wo.z > 0 ? 1 : 1.5, etaI = wo.z > 0 ? 1.5 : 1;
+        for (int i = 0; i < 200; ++i)
+            for (Transport mode : {Transport::Radiance, Transport::Importance}) {
+                BsdfSample bs;
+                if (!sampleBsdf(scene, sp, wo, mode, rng, bs) || bs.wi.z * wo.z > 0) continue;  // reflections
+                double expected = mode == Transport::Radiance ? (etaO / etaI) * (etaO / etaI) : 1;
+                CHECK(bs.weight.x == doctest::Approx(expected).epsilon(1e-5));
+                ++refractions;
+            }
+    }
+    CHECK(refractions > 500);
+}
+
+TEST_CASE("notes, page 13: the adjoint f*(wo,wi) = f(wi,wo) |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|)") {
+    CHECK(pageSays("13-shading-normals.md", "f*(wo, wi) = f(wi, wo) |wo . ns| |wi . ng| / (|wo . ng| |wi . ns|)"));
+    Scene scene = singleQuadScene(makeMaterial(Material::Diffuse, 0.8f));
+    SurfacePoint sp = surfaceAtOrigin(normalize(Vec3(0.4f, 0.1f, 1)));
+    Rng rng = makeRng(7, 0, 0);
+    int pairs = 0;
+    for (int i = 0; i < 2000; ++i) {
+        Vec3 wo = sampleUniformSphere(rng.uniform(), rng.uniform()), wi = sampleUniformSphere(rng.uniform(), rng.uniform());
+        float pdf, pdfRev;
+        Vec3 radiance = evalBsdf(scene, sp, wo, wi, Transport::Radiance, pdf, pdfRev);   // f(wo,wi) |wi.ns|
+        Vec3 importance = evalBsdf(scene, sp, wo, wi, Transport::Importance, pdf, pdfRev);
+        if (radiance.x <= 0) continue;
+        // Lambert's f is symmetric, so f(wi,wo) |wi.ns| is the radiance value itself.
+        double factor = absDot(wo, sp.ns) * absDot(wi, sp.ng) / (absDot(wo, sp.ng) * absDot(wi, sp.ns));
+        CHECK(importance.x == doctest::Approx(radiance.x * factor).epsilon(1e-4));
+        ++pairs;
+    }
+    CHECK(pairs > 300);
+}
+
+TEST_CASE("notes, pages 4 and 9: the furnace's partial sums, and roulette's q = min(0.95, max channel of beta / beta at the start)") {
+    CHECK(pageSays("04-measurement-equation.md", "Le (1 - a^(D+1))/(1-a)"));
+    CHECK(pageSays("09-russian-roulette-and-sampling.md", "q = min(0.95, max channel of beta / beta at the start)"));
+    Scene furnace = sceneAt("scenes/furnace.scene", 4, 4);
+    for (int D : {0, 1, 3, 6}) {
+        RenderOptions o = quietOptions(Method::PT, 2, 8);
+        o.maxDepth = D;
+        o.rrStart = 99;
+        CHECK(imageMean(render(furnace, o).image) == doctest::Approx((1 - std::pow(0.5, D + 1)) / 0.5).epsilon(1e-5));
+    }
+    RenderOptions o;
+    Rng rng = makeRng(9, 0, 0);
+    int survived = 0, trials = 20000;
+    for (int i = 0; i < trials; ++i) {
+        Vec3 beta(0.2f, 0.4f, 0.1f);
+        if (!russianRoulette(beta, 0.5f, o.rrStart, o, rng)) continue;
+        ++survived;
+        CHECK(beta.y == doctest::Approx(0.4 / 0.8));  // q = min(0.95, 0.4 / 0.5) = 0.8
+    }
+    CHECK(double(survived) / trials == doctest::Approx(0.8).epsilon(0.02));
 }
 
 TEST_CASE("every make target and every figure the notes mention exists") {
