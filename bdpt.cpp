@@ -2893,7 +2893,8 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
     bool throughputRoulette = cl.opt.method == Method::PT || cl.opt.method == Method::NEE || cl.opt.roulette == Roulette::Throughput;
     if (given.count("--rr-start") && !throughputRoulette)
         fail(std::string("--rr-start applies to pt, nee and --roulette throughput; --method ") + methodName(cl.opt.method) +
-             " ends its subpaths by --roulette albedo (the default), from the first bounce on");
+             (cl.opt.roulette == Roulette::Albedo ? " ends its subpaths by --roulette albedo (the default), which acts from the first bounce on"
+                                                  : " has --roulette off: no roulette at all"));
     if (given.count("--time") && given.count("--spp"))
         fail("--time and --spp both given: --time renders passes until the time is up, --spp a number of them; give one");
     if (!cl.strategiesDir.empty()) cl.opt.strategyMaxLength = cl.strategyLength;

@@ -7,6 +7,7 @@
 #                             the thin-gap figure, sds-point by pt, bdpt and vcm (sds-vcm.png), the
 #                             combination-of-estimators example and the furnace's series
 #   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
+#   tests/charts.sh plots     the charts again from the logs of the last charts run (no rendering)
 #   tests/charts.sh tables    the failure table and the reference check from the runs' logs
 #   tests/charts.sh refcheck  the references' noise against the charted errors (also run by charts)
 # SCENES="a b" limits refs and charts to some scenes (the tables always cover all of them).
@@ -26,11 +27,12 @@ clampFor() {  # G is in the scene's units: a clamp that removes a visible share 
   case $1 in cornell*|indirect|shading-normals) echo 1e-5 ;; furnace) echo 0.1 ;; refraction) echo 0.05 ;; *) echo 0.2 ;; esac
 }
 # One colour per method and one dash pattern per variant, the same in every chart (colour-blind
-# safe: Okabe-Ito): pt black, nee blue, lt orange, ir purple, bdpt vermilion, vcm bluish green.
+# safe: Okabe-Ito): pt black, nee blue, lt sky blue, ir purple, bdpt vermilion, vcm bluish green
+# (lt was orange, too close to bdpt's vermilion to tell apart).
 lineStyle() {
   case $1 in
     pt) echo "lc rgb '#000000' dt 1" ;;          nee) echo "lc rgb '#0072b2' dt 1" ;;
-    nee-mis) echo "lc rgb '#0072b2' dt 2" ;;     lt) echo "lc rgb '#e69f00' dt 1" ;;
+    nee-mis) echo "lc rgb '#0072b2' dt 2" ;;     lt) echo "lc rgb '#56b4e9' dt 1" ;;
     ir) echo "lc rgb '#cc79a7' dt 1" ;;          ir-clamp) echo "lc rgb '#cc79a7' dt 2" ;;
     bdpt-balance) echo "lc rgb '#d55e00' dt 1" ;; bdpt-power) echo "lc rgb '#d55e00' dt 2" ;;
     bdpt-max) echo "lc rgb '#d55e00' dt 3" ;;    bdpt-uniform) echo "lc rgb '#d55e00' dt 4" ;;
@@ -113,21 +115,38 @@ furnaceReference() {
 charts() {
   for s in $SCENES; do
     [ -f scenes/refs/$s.pfm ] || { echo "no reference scenes/refs/$s.pfm: run make refs" >&2; exit 1; }
-    plot=""
     while IFS='|' read -r label opts; do
       # shellcheck disable=SC2086
       ./bdpt scenes/$s.scene $opts --res "$RES" --time "$RUN_SECONDS" --quiet --ref scenes/refs/$s.pfm \
         --log "$LOGS/$s-$label.csv" --out "$LOGS/$s-$label.png"
-      plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:7 with lines lw 2 $(lineStyle "$label") title '$label'"
     done < <(methods "$s")
-    refnoise=$(awk -F, -v s="$s" '$1 == s { print $6 / 2 }' scenes/refs/refs.csv)
-    # an exact reference (the furnace) has no noise to draw on a log scale
-    [ "${refnoise:-0}" = 0 ] || plot="$plot, $refnoise with lines dt 2 lc rgb 'black' title 'reference noise'"
-    gnuplot <<GP
+    plotScene "$s"
+  done
+  SCENES=$ALL_SCENES tables
+}
+
+plots() {  # the charts again from the runs' logs, without rendering (after a change of style)
+  for s in $SCENES; do plotScene "$s"; done
+}
+
+plotScene() {
+  local s=$1 plot="" logs=()
+  while IFS='|' read -r label opts; do
+    plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:7 with lines lw 2 $(lineStyle "$label") title '$label'"
+    logs+=("$LOGS/$s-$label.csv")
+  done < <(methods "$s")
+  refnoise=$(awk -F, -v s="$s" '$1 == s { print $6 / 2 }' scenes/refs/refs.csv)
+  # an exact reference (the furnace) has no noise to draw on a log scale
+  [ "${refnoise:-0}" = 0 ] || plot="$plot, $refnoise with lines dt 2 lc rgb 'black' title 'reference noise'"
+  # Four decades below the largest error: a run whose error crosses zero (ir's in the furnace)
+  # would otherwise stretch the axis down to 1e-8 and flatten every other curve.
+  ymin=$(awk -F, 'FNR > 1 && $7 != "" && $7 > m { m = $7 } END { e = int(log(m) / log(10) + 10) - 10 - 4; printf "1e%d", e }' "${logs[@]}")
+  gnuplot <<GP
 set terminal pngcairo size 800,560 font "sans,11"
 set output "$FIG/error-vs-time-$s.png"
 set datafile separator ","
 set logscale xy
+set yrange [$ymin:*]
 set key outside right
 set grid
 set title "$s ($RES): RMSE against the reference, same time for every method"
@@ -136,9 +155,7 @@ set ylabel "RMSE"
 set format y "%g"
 plot $plot
 GP
-    echo "chart $FIG/error-vs-time-$s.png"
-  done
-  SCENES=$ALL_SCENES tables
+  echo "chart $FIG/error-vs-time-$s.png"
 }
 
 # The failure table and the reference check, from the logs of every scene's runs.

@@ -25,16 +25,26 @@ TEST_CASE("metrics on synthetic images with known answers") {
     CHECK(compareToReference(dark, ref).relMse == doctest::Approx(0.25 / 1.01).epsilon(1e-4));
 }
 
+// `bdpt OPTION A.pfm B.pfm --out build/tmp_NAME.png` on two images written for it; the PFM it
+// writes is read back into result.
+static int twoImageCommand(const std::string& option, const Image& a, const Image& b, const std::string& name, Image& result,
+                           std::ostringstream& so) {
+    std::string pa = "build/tmp_" + name + "_a.pfm", pb = "build/tmp_" + name + "_b.pfm";
+    REQUIRE(writePFM(a, pa));
+    REQUIRE(writePFM(b, pb));
+    std::ostringstream se;
+    int status = runCommandLine({option, pa, pb, "--out", "build/tmp_" + name + ".png"}, so, se);
+    if (status == 0) REQUIRE(readPFM("build/tmp_" + name + ".pfm", result));
+    return status;
+}
+
 TEST_CASE("--average: the mean of two references, and refusal of images of different sizes") {
     Image one = constantImage(6, 4, 1), three = constantImage(6, 4, 3), small = constantImage(4, 4, 1);
     three.at(5, 3) = Vec3(7, 9, 11);  // a corner, to see the rows are not flipped
-    REQUIRE(writePFM(one, "build/tmp_avg_a.pfm"));
-    REQUIRE(writePFM(three, "build/tmp_avg_b.pfm"));
     REQUIRE(writePFM(small, "build/tmp_avg_small.pfm"));
     std::ostringstream so, se;
-    CHECK(runCommandLine({"--average", "build/tmp_avg_a.pfm", "build/tmp_avg_b.pfm", "--out", "build/tmp_avg.png"}, so, se) == 0);
     Image mean;
-    REQUIRE(readPFM("build/tmp_avg.pfm", mean));
+    CHECK(twoImageCommand("--average", one, three, "avg", mean, so) == 0);
     CHECK(mean.width == 6);
     CHECK(mean.at(0, 0).y == 2.0f);
     CHECK(mean.at(5, 3).z == 6.0f);
@@ -49,12 +59,9 @@ TEST_CASE("--ratio: A/B over 4x4 blocks, in false colour, with its percentiles")
         for (int x = 0; x < 8; ++x) a.at(x, y) = Vec3(2);  // rows 0-3 twice as bright
     a.at(0, 7) = Vec3(1 + 16);                               // one noisy pixel: its block's mean 2
     for (int y = 4; y < 8; ++y) b.at(7, y) = a.at(7, y) = Vec3(0);  // an undefined column
-    REQUIRE(writePFM(a, "build/tmp_ratio_a.pfm"));
-    REQUIRE(writePFM(b, "build/tmp_ratio_b.pfm"));
-    std::ostringstream so, se;
-    CHECK(runCommandLine({"--ratio", "build/tmp_ratio_a.pfm", "build/tmp_ratio_b.pfm", "--out", "build/tmp_ratio.png"}, so, se) == 0);
+    std::ostringstream so;
     Image r;
-    REQUIRE(readPFM("build/tmp_ratio.pfm", r));
+    CHECK(twoImageCommand("--ratio", a, b, "ratio", r, so) == 0);
     CHECK(r.at(1, 1).x == doctest::Approx(2.0));
     CHECK(r.at(6, 2).x == doctest::Approx(2.0));
     CHECK(r.at(3, 5).x == doctest::Approx(2.0));   // the noisy pixel's block: (15 + 17) / 16

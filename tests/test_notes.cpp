@@ -104,6 +104,32 @@ TEST_CASE("the commands the notes show write into build/, never over the committ
     CHECK(outputs >= 30);
 }
 
+TEST_CASE("every page's exercises have answers, and every figure a caption") {
+    int pages = 0, figures = 0;
+    for (const std::string& page : notePages()) {
+        std::string text = slurp(page);
+        CAPTURE(page);
+        if (text.find("## Exercises") != std::string::npos) {
+            CHECK(text.find("### Answers (for the instructor)") != std::string::npos);
+            ++pages;
+        }
+        // A figure line is followed, after one blank line, by its caption in italics (or by the
+        // other half of a pair of figure lines).
+        std::istringstream in(text);
+        std::vector<std::string> lines;
+        for (std::string line; std::getline(in, line);) lines.push_back(line);
+        for (size_t i = 0; i < lines.size(); ++i) {
+            if (lines[i].rfind("![", 0) != 0) continue;
+            CAPTURE(lines[i]);
+            REQUIRE(i + 2 < lines.size());
+            CHECK((lines[i + 2].rfind("*", 0) == 0 || lines[i + 2].rfind("![", 0) == 0));
+            ++figures;
+        }
+    }
+    CHECK(pages >= 16);
+    CHECK(figures >= 30);
+}
+
 // -- The formulas the pages state, checked against the code -----------------------------------
 // Each check finds the formula on its page, as written, and evaluates it beside the code: a page
 // edited to a wrong formula fails the first half, a code change that breaks it the second.
