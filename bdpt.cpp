@@ -1339,7 +1339,8 @@ inline Vec3 radianceNEE(const Scene& scene, const RenderOptions& opt, Ray ray, R
 // -- The camera connection shared by light tracing and BDPT's t=1 strategy. For a point x seen
 // by the pinhole, W_j(x->eye) G(x,eye) with the camera-side cosine: W_j cos_cam / d^2, divided by
 // the number of light paths per pass (one per pixel, so the W*H in W_j cancels it; forgetting
-// either is light tracing's classic bug, pbrt-v4 #347 and #456). The scene-side cosine stays with the caller (section 4).
+// either is light tracing's classic bug, pbrt-v4 #347 and #456). The scene-side cosine stays
+// with the caller (section 4).
 struct CameraConnection {
     int pixel = -1;          // -1: behind the camera, outside the image, or occluded
     Vec3 toCamera;           // unit direction from x to the pinhole
@@ -1572,7 +1573,8 @@ inline void traceLightPath(const Scene& scene, const RenderOptions& opt, Rng& rn
 //   sum_VPL  beta_y / N  f_y(y->x) f_x(y->x->eye) G(x,y) V(x,y)
 // Unbiased for the paths it can make, but G = cos cos / d^2 is unbounded where x and y come close
 // (corners): the bright splotches of panel (d). --clamp C replaces G by min(G, C): panel (e),
-// smooth but darker, and the loss does not shrink with more passes (bias; pbrt-v3 #73 met the same 1/d^2).
+// smooth but darker, and the loss does not shrink with more passes (bias; the same 1/d^2 was
+// pbrt-v3 #73).
 struct Vpl {
     PathVertex y;       // a light-subpath vertex, its beta divided by the number of VPL paths
     int bounces = 0;    // scattering vertices before y on its light path
@@ -2501,8 +2503,10 @@ inline Image blockRatio(const Image& a, const Image& b, int block) {
         for (int bx = 0; bx < a.width; bx += block) {
             double sa = 0, sb = 0;
             for (int y = by; y < std::min(a.height, by + block); ++y)
-                for (int x = bx; x < std::min(a.width, bx + block); ++x)
-                    sa += double(a.at(x, y).x) + a.at(x, y).y + a.at(x, y).z, sb += double(b.at(x, y).x) + b.at(x, y).y + b.at(x, y).z;
+                for (int x = bx; x < std::min(a.width, bx + block); ++x) {
+                    sa += double(a.at(x, y).x) + a.at(x, y).y + a.at(x, y).z;
+                    sb += double(b.at(x, y).x) + b.at(x, y).y + b.at(x, y).z;
+                }
             float ratio = sb > 0 ? float(sa / sb) : sa > 0 ? kInf : std::numeric_limits<float>::quiet_NaN();
             for (int y = by; y < std::min(a.height, by + block); ++y)
                 for (int x = bx; x < std::min(a.width, bx + block); ++x) r.at(x, y) = Vec3(ratio);
@@ -2709,7 +2713,8 @@ Method
   --alpha A         vcm: radius schedule r_i = r_0 i^((A-1)/2), 0 < A <= 1 (default 0.75)
   --strategies DIR  bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length
                     (vcm: and one of all merges per path length), unweighted and MIS-weighted,
-                    and two pyramid montages, into DIR
+                    and two pyramid montages, into DIR (each pyramid row brightened by the
+                    stops printed in its tiles)
   --strategy-length K  longest path (segments) with per-strategy images (default 5)
   --maxdepth D      at most D bounces (scattering vertices) per path (default 32)
   --roulette R      lt, ir, bdpt, vcm: how subpaths end: throughput (q from the throughput after
