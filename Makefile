@@ -33,7 +33,7 @@ bdpt: bdpt.cpp build/flags
 run: bdpt
 	./bdpt scenes/cornell.scene --spp 64 --out cornell.png
 
-build/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h build/flags
+build/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h tests/densities.h build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
@@ -72,7 +72,7 @@ figures: bdpt build/estimators
 SANITIZE := -O1 -g -std=c++17 -Wall -Wextra -pthread -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 SAN_TESTS := $(patsubst tests/%.cpp,build/san/%,$(wildcard tests/test_*.cpp))
 
-build/san/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h
+build/san/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h tests/densities.h
 	@mkdir -p build/san
 	$(CXX) $(SANITIZE) -I. -o $@ $< $(LDLIBS)
 
@@ -113,7 +113,7 @@ build/efficiency: tests/efficiency.cpp tests/bench.h bdpt.cpp build/flags
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 # The densities of page 10's "Combination of Estimators: Example" (tests/estimators.cpp).
-build/estimators: tests/estimators.cpp tests/bench.h bdpt.cpp build/flags
+build/estimators: tests/estimators.cpp tests/bench.h tests/densities.h bdpt.cpp build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 

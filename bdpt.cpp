@@ -153,8 +153,10 @@ struct Shape {
     float area = 0;
     int material = 0;
     Vec3 emission;        // radiance Le leaving the front side (black: not a light)
-    float bumpAmplitude = 0, bumpFrequency = 0;  // shading-normal perturbation (section 4)
-    Vec3 tiltedNormal;    // quad "tilt": a constant shading normal (zero: none)
+    // The shading normal (section 4): ng itself, a procedural bump, or a quad's constant tilt.
+    enum class ShadingNormal : unsigned char { Geometric, Bump, Tilt } shading = ShadingNormal::Geometric;
+    float bumpAmplitude = 0, bumpFrequency = 0;
+    Vec3 tiltedNormal;
     int light = -1;       // index into Scene::lights when emissive
     int line = 0;         // where the scene file defines it (for warnings)
 };
@@ -226,8 +228,8 @@ inline Vec3 geometricNormal(const Shape& s, Vec3 p) {
 // A quad's "tilt" turns ns by one constant angle toward its edge u: the slides' "energy
 // generator" at its plainest, one ratio |wo.ns|/|wo.ng| for every point (lecture notes, page 13).
 inline Vec3 shadingNormal(const Shape& s, Vec3 p, Vec3 ng) {
-    if (s.tiltedNormal.x != 0 || s.tiltedNormal.y != 0 || s.tiltedNormal.z != 0) return s.tiltedNormal;
-    if (s.bumpAmplitude == 0) return ng;
+    if (s.shading == Shape::ShadingNormal::Geometric) return ng;  // one test on the common path
+    if (s.shading == Shape::ShadingNormal::Tilt) return s.tiltedNormal;
     float f = s.bumpFrequency;
     Vec3 g(std::sin(f * p.x), std::sin(f * p.y), std::sin(f * p.z));
     return normalize(ng + s.bumpAmplitude * (g - dot(g, ng) * ng));
@@ -1060,14 +1062,15 @@ struct SceneParser {
                 s.bumpFrequency = number("bump frequency");
                 if (s.bumpAmplitude < 0 || s.bumpAmplitude > 10) fail("bump amplitude must lie in [0, 10]");
                 if (!(s.bumpFrequency > 0)) fail("bump frequency must be > 0");
-                if (s.tiltedNormal.x != 0 || s.tiltedNormal.y != 0 || s.tiltedNormal.z != 0)
-                    fail("tilt and bump both given: a quad has one shading normal");
+                if (s.shading == Shape::ShadingNormal::Tilt) fail("tilt and bump both given: a quad has one shading normal");
+                if (s.bumpAmplitude > 0) s.shading = Shape::ShadingNormal::Bump;
             } else if (opt == "tilt" && s.type == Shape::Quad) {
                 float degrees = number("tilt angle (degrees)");
                 if (!(degrees > -90 && degrees < 90)) fail("tilt angle must lie between -90 and 90 degrees");
                 float a = degrees * kPi / 180;
+                if (s.shading == Shape::ShadingNormal::Bump) fail("tilt and bump both given: a quad has one shading normal");
+                s.shading = Shape::ShadingNormal::Tilt;
                 s.tiltedNormal = normalize(std::cos(a) * s.normal + std::sin(a) * normalize(s.u));
-                if (s.bumpAmplitude > 0) fail("tilt and bump both given: a quad has one shading normal");
             } else {
                 fail("unknown option '" + printable(opt) + "' (emit, bump" +
                      (s.type == Shape::Sphere ? ", inside)" : ", tilt)"));
@@ -2566,8 +2569,12 @@ inline std::string replaceExtension(const std::string& path, const std::string& 
 // The pyramid's rows differ by orders of magnitude (each bounce keeps about the albedo), so each
 // row k is brightened by whole stops until its light, the sum of its weighted tiles, comes within
 // half a stop of the brightest row's; the tile's label prints them ("s1 t3 +2").
+inline bool hasMergeImages(const RenderResult& r, int maxLength) {  // vcm: a column "m k" of merges
+    return int(r.strategyImages.size()) > maxLength * (maxLength + 3);
+}
+
 inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
-    const bool merges = int(r.strategyImages.size()) > maxLength * (maxLength + 3);
+    const bool merges = hasMergeImages(r, maxLength);
     std::vector<double> rowMean(maxLength + 1, 0);
     for (int k = 1; k <= maxLength; ++k) {
         for (int s = 0; s <= k; ++s) rowMean[k] += imageMean(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1]);
@@ -2585,7 +2592,7 @@ inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
 inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
     if (r.strategyImages.empty()) return true;
     const int W = r.image.width, H = r.image.height, gap = 4;
-    const bool merges = int(r.strategyImages.size()) > maxLength * (maxLength + 3);  // vcm: a column "m k" of merges
+    const bool merges = hasMergeImages(r, maxLength);
     const int canvasW = (maxLength + 1 + merges) * (W + gap) + gap, canvasH = maxLength * (H + gap) + gap;
     const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
     bool ok = true;
@@ -2757,6 +2764,27 @@ Exit status: 0 done, 1 an output file cannot be written (checked before renderin
 file or option, 3 abandoned by a second Ctrl-C (nothing written), 130 interrupted by Ctrl-C (the
 completed passes written).
 )";
+
+// --ratio: A/B over 4x4 blocks as a false-colour PNG and a PFM of the ratios (0 where undefined),
+// and its percentiles on out. Returns the exit status.
+inline int writeRatio(const Image& a, const Image& b, const std::string& png, std::ostream& out, std::ostream& err) {
+    Image r = blockRatio(a, b, 4);
+    std::vector<float> q;
+    for (const Vec3& p : r.pixels)
+        if (std::isfinite(p.x)) q.push_back(p.x);
+    std::sort(q.begin(), q.end());
+    auto pct = [&](double f) { return q.empty() ? 0.0f : q[size_t(f * (q.size() - 1))]; };
+    size_t off = size_t(std::count_if(q.begin(), q.end(), [](float v) { return std::fabs(std::log2(v)) > 0.5f; }));
+    out << "ratio of means " << imageMean(a) / imageMean(b) << "; A/B over 4x4 blocks: 5% " << pct(0.05) << ", median "
+        << pct(0.5) << ", 95% " << pct(0.95) << "; " << 100.0 * off / std::max<size_t>(1, q.size())
+        << "% of the blocks more than half a stop apart\n";
+    std::string pfm = replaceExtension(png, ".pfm");
+    Image colours = ratioColours(r);
+    for (Vec3& p : r.pixels) p = std::isfinite(p.x) ? p : Vec3(0);
+    if (writePNG(colours, png, 0) && writePFM(r, pfm)) return 0;
+    err << "bdpt: cannot write " << png << " or " << pfm << "\n";
+    return 1;
+}
 
 struct CommandLine {
     std::string scenePath, out = "render.png";
@@ -3017,24 +3045,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
                 err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
                 return 1;
             }
-            if (cl.ratio) {
-                Image r = blockRatio(a, b, 4);
-                std::vector<float> q;
-                for (const Vec3& p : r.pixels)
-                    if (std::isfinite(p.x)) q.push_back(p.x);
-                std::sort(q.begin(), q.end());
-                auto pct = [&](double f) { return q.empty() ? 0.0f : q[size_t(f * (q.size() - 1))]; };
-                size_t off = size_t(std::count_if(q.begin(), q.end(), [](float v) { return std::fabs(std::log2(v)) > 0.5f; }));
-                out << "ratio of means " << imageMean(a) / imageMean(b) << "; A/B over 4x4 blocks: 5% " << pct(0.05)
-                    << ", median " << pct(0.5) << ", 95% " << pct(0.95) << "; " << 100.0 * off / std::max<size_t>(1, q.size())
-                    << "% of the blocks more than half a stop apart\n";
-                std::string pfm = replaceExtension(cl.out, ".pfm");
-                Image colours = ratioColours(r);
-                for (Vec3& p : r.pixels) p = std::isfinite(p.x) ? p : Vec3(0);  // the PFM: 0 where undefined
-                if (writePNG(colours, cl.out, 0) && writePFM(r, pfm)) return 0;
-                err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
-                return 1;
-            }
+            if (cl.ratio) return writeRatio(a, b, cl.out, out, err);
             ErrorMetrics m = compareToReference(a, b);
             out << "rmse " << m.rmse << " relmse " << m.relMse << " bias " << m.bias << " mean " << m.mean << "\n";
             return 0;

@@ -3,6 +3,7 @@
 // exists, every figure they show is in lecture_notes/figures/, and the formulas they state are
 // the ones the code computes. (Issues: lecture notes; lecture notes, second edition.)
 #include "helpers.h"
+#include "densities.h"
 #include <dirent.h>
 #include <regex>
 
@@ -173,10 +174,9 @@ TEST_CASE("notes, pages 7 and 10: p_{k,s+1}/p_{k,s} = pdfRev/pdfFwd of the verte
     CHECK(pageSays("10-combining-estimators.md", "| `balance` | 1/(1 + sum r_i) |"));
     CHECK(pageSays("10-combining-estimators.md", "| `power` | 1/(1 + sum r_i^2) |"));
     // Paths of k = 2 on cornell: x_0 on the lamp, x_1 what a pixel sees, x_2 the pinhole. The
-    // three strategies' densities as page 7 writes them, each vertex's from scratch:
-    //   p_0 = p_cam(x_1) q(x_1) p_bsdf(x_1 -> x_0),  p_1 = p_cam(x_1) p_light(x_0),
-    //   p_2 = p_light(x_0) p_emit(x_0 -> x_1),
-    // and misWeight's weight of next event (s = 1) and of light tracing (s = 2) against them.
+    // three strategies' densities as page 7 writes them, each vertex's from scratch
+    // (tests/densities.h), and misWeight's weight of next event (s = 1) and of light tracing
+    // (s = 2) against them.
     Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
     int lamp = scene.lights[0].shape;
     RenderOptions opt = quietOptions(Method::BDPT, 1, 5);
@@ -188,20 +188,9 @@ TEST_CASE("notes, pages 7 and 10: p_{k,s+1}/p_{k,s} = pdfRev/pdfFwd of the verte
         cameraSubpath(scene, opt, rng.uniform() * 32, rng.uniform() * 32, rng, camera);
         lightSubpath(scene, opt, rng, light);
         if (camera.size() < 2 || light.empty() || camera[1].delta) continue;
-        const SurfacePoint &x0 = light[0].sp, &x1 = camera[1].sp;
-        Vec3 d = x0.p - x1.p;
-        double dist2 = dot(d, d);
-        Vec3 w = d / std::sqrt(dist2);
-        double cos0 = -dot(scene.shapes[lamp].normal, w), cos1 = absDot(x1.ng, w);
-        if (cos0 <= 0 || occluded(scene, shadowRay(x1, x0))) continue;
-        Vec3 toX1 = x1.p - scene.camera.eye;
-        double camDist2 = dot(toX1, toX1);
-        Vec3 dirCam = toX1 / std::sqrt(camDist2);
-        double pCam = pdfCameraDirection(scene.camera, dirCam) * absDot(x1.ng, dirCam) / camDist2;
-        double pLight = pdfLightPoint(scene, lamp);
-        double p[3] = {pCam * albedoContinuation(scene, x1) * pdfBsdf(scene, x1, -dirCam, w) * cos0 / dist2, pCam * pLight,
-                       pLight * cos0 / kPi * cos1 / dist2};
-        if (!(p[1] > 0)) continue;
+        TwoSegmentPath path = twoSegmentPath(scene, lamp, light[0].sp, camera[1].sp);
+        if (!path.valid) continue;
+        const double* p = path.p;
         for (Heuristic h : {Heuristic::Balance, Heuristic::Power}) {
             auto pw = [&](double x) { return h == Heuristic::Power ? x * x : x; };
             double sum = pw(p[0]) + pw(p[1]) + pw(p[2]);
@@ -212,11 +201,11 @@ TEST_CASE("notes, pages 7 and 10: p_{k,s+1}/p_{k,s} = pdfRev/pdfFwd of the verte
             worst = std::max(worst, std::fabs(w1 - pw(p[1]) / sum));
             std::vector<PathVertex> lightPath = {light[0], camera[1]}, eye = {camera[0]};  // s = 2, t = 1
             lightPath[1].type = PathVertex::Surface;
-            lightPath[1].wo = w;  // toward x_0, its predecessor on the light subpath
-            lightPath[1].prevDist2 = float(dist2);
-            lightPath[1].pdfFwd = p[2] / pLight;
+            lightPath[1].wo = path.w;  // toward x_0, its predecessor on the light subpath
+            lightPath[1].prevDist2 = float(path.dist2);
+            lightPath[1].pdfFwd = p[2] / path.pLight;
             lightPath[1].pdfRev = 0;
-            lightPath[1].continuation = albedoContinuation(scene, x1);
+            lightPath[1].continuation = albedoContinuation(scene, camera[1].sp);
             lightPath[0].pdfRev = 0;
             Connection c2;
             if (isBlack(connectStrategy(scene, lightPath, 2, eye, 1, c2, pixel))) continue;
