@@ -619,6 +619,7 @@ struct Scene {
     bool adjointCorrection = true;     // false: --no-adjoint-correction
     bool symmetricRefraction = false;  // true: --symmetric-refraction
     bool fixedRayOffset = false;       // true: --fixed-ray-offset (section 2)
+    bool deltaDensityOne = false;      // true: --delta-density-one (section 6, bdpt's banner)
     float exposure = 0;                // the PNG's default exposure in stops (--exposure overrides)
 };
 
@@ -1381,7 +1382,7 @@ struct PathVertex {
     Vec3 wo;                // surface: unit vector toward the previous vertex of its own subpath
     float prevDist2 = 0;    // squared distance to that vertex
     Vec3 beta;              // subpath throughput up to this vertex (light: Le/p_A or I/P(light))
-    double pdfFwd = 0, pdfRev = 0; // area densities for bdpt's MIS (see its banner below); a delta: 1
+    double pdfFwd = 0, pdfRev = 0; // area densities for bdpt's MIS (see its banner below)
     bool delta = false;          // a delta BSDF was sampled here
     bool deltaPosition = false;  // the pinhole, a point light
     int light = -1;              // the light y_0 was sampled on
@@ -1431,11 +1432,51 @@ inline Vec3 evalVertex(const Scene& scene, const PathVertex& v, Vec3 w, Transpor
 // p_A = p_omega |cos_next| / d^2.
 inline double toArea(double pdfOmega, const PathVertex& next, Vec3 w, float dist2) { return pdfOmega * cosAt(next, w) / dist2; }
 
-// Extends a subpath by BSDF sampling. Each new vertex x_i gets pdfFwd, and x_{i-2} its pdfRev,
-// both evaluated on the vertices' positions (not on the sampled direction, which leaves from an
-// offset origin), so that every strategy's density of one path is computed on the same geometry.
-// Densities sampled at a delta vertex x_{i-1} are stored as 1: the same delta appears in every
-// strategy's density and cancels, while a density that is numerically 0 stays 0 (impossible).
+// The density, up to the delta itself, with which a specular vertex sends its subpath along the
+// unit direction w (away from the vertex): eta_w^2 |w . ns|, eta_w the index on w's side. Mirrors
+// and Snell's law keep the etendue eta^2 |cos| d omega (about the normal the event used), so a
+// delta event is a delta in that measure, the same one whichever way a strategy crosses the
+// vertex: between two strategies it cancels, while eta^2 |cos| here and the |cos|/d^2 of the
+// conversion to area at the next vertex do not (section 6's banner: why that matters). For a
+// mirror, and a ball or a slab crossed twice, the eta^2 |cos| factors cancel too; for one
+// interface (the pool's surface) they do not.
+inline float specularDensity(const Scene& scene, const SurfacePoint& sp, Vec3 w) {
+    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    float eta = m.type == Material::Glass && dot(w, sp.ng) < 0 ? m.ior : 1;  // the back side is inside
+    return sqr(eta) * absDot(w, sp.ns);
+}
+
+// The two solid-angle densities at a subpath vertex v whose subpath moved on along w: of sampling
+// w (having arrived along v.wo) and of sampling v.wo having arrived along w. A delta event's are
+// specularDensity's, every other vertex's evalVertex's.
+inline void scatteringDensities(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
+    if (!v.delta) {
+        evalVertex(scene, v, w, mode, pdf, pdfReverse);
+        return;
+    }
+    pdf = specularDensity(scene, v.sp, w);
+    pdfReverse = specularDensity(scene, v.sp, v.wo);
+}
+
+// Adds v, reached from path.back(), to a subpath: v's pdfFwd and the pdfRev of the vertex before
+// path.back(), both evaluated on the vertices' positions (not on the sampled direction, which
+// leaves from an offset origin), so that every strategy's density of one path is computed on the
+// same geometry. Each carries the continuation probability of the vertex it was sampled at.
+inline void appendVertex(const Scene& scene, std::vector<PathVertex>& path, PathVertex v, Transport mode) {
+    const size_t i = path.size();
+    const PathVertex& prev = path[i - 1];
+    float pdf, pdfReverse;
+    scatteringDensities(scene, prev, -v.wo, mode, pdf, pdfReverse);
+    v.pdfFwd = toArea(pdf * prev.continuation, v, v.wo, v.prevDist2);
+    if (i >= 2) path[i - 2].pdfRev = toArea(pdfReverse * prev.continuation, path[i - 2], prev.wo, prev.prevDist2);
+    if (prev.delta && scene.deltaDensityOne) {  // the deliberate mistake: pbrt's area density of 1
+        v.pdfFwd = prev.continuation;
+        if (i >= 2) path[i - 2].pdfRev = prev.continuation;
+    }
+    path.push_back(v);
+}
+
+// Extends a subpath by BSDF sampling, each new vertex by appendVertex.
 inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Vec3 beta, int maxSurfaceVertices,
                        Transport mode, Rng& rng, std::vector<PathVertex>& path) {
     const float start = maxComponent(beta);  // Russian roulette follows the throughput relative to it
@@ -1445,23 +1486,12 @@ inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Ve
         PathVertex v;
         v.sp = surfaceAt(scene, ray, hit);
         v.beta = beta;
-        size_t i = path.size();
-        const PathVertex& prev = path[i - 1];
-        Vec3 d = prev.sp.p - v.sp.p;
+        Vec3 d = path.back().sp.p - v.sp.p;
         v.prevDist2 = dot(d, d);
         if (!(v.prevDist2 > 0)) return;
         v.wo = d / std::sqrt(v.prevDist2);
         if (opt.roulette == Roulette::Albedo) v.continuation = albedoContinuation(scene, v.sp);
-        if (prev.delta) {
-            v.pdfFwd = prev.continuation;
-            if (i >= 2) path[i - 2].pdfRev = prev.continuation;
-        } else {
-            float pdf, pdfReverse;
-            evalVertex(scene, prev, -v.wo, mode, pdf, pdfReverse);
-            v.pdfFwd = toArea(pdf * prev.continuation, v, v.wo, v.prevDist2);
-            if (i >= 2) path[i - 2].pdfRev = toArea(pdfReverse * prev.continuation, path[i - 2], prev.wo, prev.prevDist2);
-        }
-        path.push_back(v);
+        appendVertex(scene, path, v, mode);
         if (bounces + 1 == maxSurfaceVertices) return;
         BsdfSample bs;
         if (!sampleBsdf(scene, v.sp, v.wo, mode, rng, bs)) return;
@@ -1664,10 +1694,23 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 //     misSum_i = ratio_i^e ([strategy i able] + misSum_{i-1}),  e = 1 balance, 2 power, 0 uniform,
 // and a weight costs O(1) instead of O(k). The max heuristic, whose ties need every r_i, walks on.
 // (vcm, section (g), adds one term per vertex to the walk and the sums: the merge there.)
-// Delta events (mirror, glass, point light) are stored as density 1 (the same delta appears in
-// every strategy's density and cancels), and a strategy that would have to connect at a delta
-// vertex or hit a point light is skipped: its density is 0 (counting it gave single fireflies
-// of 80,000x in Mitsuba #132, and in pbrt-v4 #326 and SmallVCM #5). The walk is in double:
+// A strategy that would have to connect at a delta vertex (mirror, glass) or hit a point light is
+// skipped: its density is 0 (counting it gave single fireflies of 80,000x in Mitsuba #132, and in
+// pbrt-v4 #326 and SmallVCM #5). Every other strategy crosses a specular vertex x_j inside one
+// subpath, sampling x_{j+1} from x_j or x_{j-1} from x_j: the delta cancels between strategies,
+// the geometry around it does not. The delta is one in the measure eta^2 |cos| d omega, which
+// mirrors and Snell's law keep (etendue), the same whichever way a strategy crosses x_j; left in
+// pdfFwd and pdfRev are eta^2 |cos| at x_j (specularDensity) and the |cos|/d^2 of the conversion
+// to area at the next vertex. Through a chain a S..S b between non-specular a and b the chain's
+// Jacobians cancel too, and the two directions' densities stand as
+//     p(a ... b) / p(b ... a) = [p_omega(a) / (eta_a^2 |cos_a|)] / [p_omega(b) / (eta_b^2 |cos_b|)].
+// pbrt stores the density after a delta event as an area density of 1 (--delta-density-one
+// restores it), which drops the |cos|/d^2 at the vertex after it. For the caustic under
+// glass-box's glass ball, seen directly (L S S D E, only s = 0 and t = 1 make it), the true
+// p_{s=0}/p_{t=1} is p_cam(D) q_D / p_A(L), about 0.005 (test `specular chains`); the floor point
+// lies millimetres from the ball, a 1/d^2 that pbrt's convention leaves to s = 0 alone, so s = 0
+// kept 79% of that light, t = 1 21% (0.6% and 99.4% with the true densities), and bdpt's error
+// in the caustic was 80x light tracing's alone (test `a caustic seen directly`). The walk is in double:
 // with sharp lobes near corners one density reaches 1e-31 and another 1e+8, and in float the
 // cached sums overflowed to inf beside ratios that underflowed to 0 (0 x inf = NaN, a lost sample).
 // Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues
@@ -2123,18 +2166,31 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
 // the merged vertex counted once. pdf and pdfReverse: camera[t-1]'s BSDF densities of sampling
 // y.wo from camera[t-1].wo and back. The light side's walk comes with y's record (walkLight:
 // along the subpath instead, as the max heuristic must, and tests compare).
-inline float mergeWeight(Subpath light, const VcmPass::Stored& y, Subpath camera, int t, Heuristic heuristic, double mergeEta,
-                         float pdf, float pdfReverse, bool walkLight = false) {
+// The max heuristic evaluates the merged path on one geometry, the connection (j, t)'s, with the
+// camera vertex x where y was: in the furnace many strategies have exactly equal densities, and
+// y's densities mixed with x's made ties flip from one photon to the next (2.048 instead of 2 at
+// a fixed radius of 0.1); the sums' heuristics, continuous in the densities, do not care (1.9999).
+// That costs one more BSDF evaluation per merge, at light[j-1]. After a delta event at light[j-1]
+// only y lies on the sampled direction, and y's geometry is kept.
+inline float mergeWeight(const Scene& scene, Subpath light, const VcmPass::Stored& y, Subpath camera, int t, Heuristic heuristic,
+                         double mergeEta, float pdf, float pdfReverse, bool walkLight = false) {
     const int j = int(y.index);
     const PathVertex& x = camera[t - 1];
     Junction jn;
-    jn.lightEndDelta = true;
-    jn.ptRev = y.pdfFwd;
-    jn.qsRev = pdf * x.continuation * y.qsAreaFactor;
-    jn.ptMinusRev = toArea(pdfReverse * x.continuation, camera[t - 2], x.wo, x.prevDist2);
-    if (walkLight || heuristic == Heuristic::Max) jn.qsMinusRev = j >= 2 ? light[j - 2].pdfRev : 0;
-    else jn.qsPdfFwd = y.qsPdfFwd, jn.lightTerms = y.qsLightTerms;
     double self = mergeEta * y.pdfFwd;  // p_merge / p_{j,t}
+    if (heuristic == Heuristic::Max && !y.qsDelta) {
+        Connection c;
+        evalConnection(scene, light[j - 1], x, c);
+        jn = connectionJunction(scene, light, j, camera, t, c);
+        self = mergeEta * jn.ptRev;
+    } else {
+        jn.ptRev = y.pdfFwd;
+        jn.qsRev = pdf * x.continuation * y.qsAreaFactor;
+        jn.ptMinusRev = toArea(pdfReverse * x.continuation, camera[t - 2], x.wo, x.prevDist2);
+        if (walkLight || heuristic == Heuristic::Max) jn.qsMinusRev = j >= 2 ? light[j - 2].pdfRev : 0;
+        else jn.qsPdfFwd = y.qsPdfFwd, jn.lightTerms = y.qsLightTerms;
+    }
+    jn.lightEndDelta = true;
     if (!(self > 0)) return 0;           // a light vertex sampled with density 0 cannot be merged
     MisSum m = misWalk(light, j, camera, t, heuristic, mergeEta, jn, self);  // the merge itself among them
     bool connectionAble = !y.qsDelta;
@@ -2164,7 +2220,7 @@ inline Vec3 mergeCameraVertices(const Scene& scene, const RenderOptions& opt, co
             float cosLight = absDot(y.wo, x.sp.ng);  // the light subpath's flux arrived through ng
             if (isBlack(f) || cosLight == 0) return;
             Vec3 c = x.beta * f * y.beta / (cosLight * float(vp.mergeEta));
-            float w = mergeWeight(vp.paths[y.path], y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
+            float w = mergeWeight(scene, vp.paths[y.path], y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
             L += c * w;
             if (opt.strategyMaxLength > 0 && k <= opt.strategyMaxLength) {
                 int image = mergeImageIndex(k, opt.strategyMaxLength);
@@ -2735,6 +2791,8 @@ Deliberate mistakes (slides: "Non-symmetric scattering")
   --no-adjoint-correction  light paths use the shading-normal BSDF unchanged (not its adjoint)
   --fixed-ray-offset       push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)
                     instead of the hit point's error bound (see tests/thin-gap.scene)
+  --delta-density-one      bdpt, vcm: after a mirror or glass, store the MIS densities as 1
+                    (pbrt's convention) instead of the true ones: caustics go to the noisy s = 0
 Sampling
   --spp N           N passes of one sample per pixel (default 16)
   --time SECONDS    render passes until SECONDS have passed (replaces --spp)
@@ -2790,7 +2848,7 @@ struct CommandLine {
     std::string scenePath, out = "render.png";
     RenderOptions opt;
     int width = 0, height = 0;
-    bool help = false, symmetricRefraction = false, noAdjointCorrection = false, fixedRayOffset = false;
+    bool help = false, symmetricRefraction = false, noAdjointCorrection = false, fixedRayOffset = false, deltaDensityOne = false;
     int strategyLength = 5;
     double radius = -1;          // vcm --radius; < 0: not given
     std::string strategiesDir, refPath, logPath;
@@ -2866,6 +2924,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (a == "--symmetric-refraction") cl.symmetricRefraction = true;
         else if (a == "--no-adjoint-correction") cl.noAdjointCorrection = true;
         else if (a == "--fixed-ray-offset") cl.fixedRayOffset = true;
+        else if (a == "--delta-density-one") cl.deltaDensityOne = true;
         else if (a == "--maxdepth") cl.opt.maxDepth = int(integer(i, 0, 10000));
         else if (a == "--rr-start") cl.opt.rrStart = int(integer(i, 0, 10001));
         else if (a == "--spp") cl.opt.spp = int(integer(i, 1, 1e8));
@@ -2915,6 +2974,7 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
     onlyFor("--strategies", {Method::BDPT, Method::VCM}, "--method bdpt and vcm");
     onlyFor("--strategy-length", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)");
     onlyFor("--radius", {Method::VCM}, "--method vcm");
+    onlyFor("--delta-density-one", {Method::BDPT, Method::VCM}, "--method bdpt and vcm");
     onlyFor("--alpha", {Method::VCM}, "--method vcm");
     onlyFor("--vpls", {Method::IR}, "--method ir");
     onlyFor("--clamp", {Method::IR}, "--method ir");
@@ -3068,6 +3128,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     scene.symmetricRefraction = cl.symmetricRefraction;
     scene.adjointCorrection = !cl.noAdjointCorrection;
     scene.fixedRayOffset = cl.fixedRayOffset;
+    scene.deltaDensityOne = cl.deltaDensityOne;
     Image ref;
     if (!cl.refPath.empty()) {
         if (!readPFM(cl.refPath, ref)) { err << cl.refPath << ": cannot read the reference (a PFM written by bdpt)\n"; return 2; }
