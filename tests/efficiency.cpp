@@ -5,12 +5,10 @@
 // Every method renders each scene at the references' resolution with the same samples per pixel,
 // on one thread, for several seeds, interleaved (seed by seed, method by method) so that a noisy
 // machine slows them alike. Per run: CPU seconds of the rendering thread and the MSE against
-// scenes/refs/SCENE.pfm, leaving out the lamp seen directly: every pixel within one pixel of a
-// reference value above 5. Its edge pixels are part lamp (Le = 17) and part ceiling, and a camera
-// sample's jitter lands on one or the other: that noise is the pixel filter's, the same for every
-// camera-path method, and on cornell it was 90% of their MSE, hiding the transport's error
-// (light tracing splats some 40 lamp points into each such pixel per pass and does not show it).
-// The table gives medians over the seeds and the efficiency 1/(MSE x CPU-s) relative to nee --mis.
+// scenes/refs/SCENE.pfm, leaving out the lamp seen directly and its neighbours (nearLamp in
+// bdpt.cpp: their noise is the pixel filter's, the same for every camera-path method).
+// The table gives medians over the seeds, the efficiency 1/(MSE x CPU-s) relative to nee --mis,
+// and the share of the squared error in the pixels that see a mirror or glass (seesSpecular).
 //   build/efficiency [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT]
 // --alternatives adds the Russian roulette variants (the measurements behind the choice in
 // bdpt's banner); --only keeps the methods whose label contains TEXT (and nee --mis,
@@ -56,25 +54,37 @@ static std::vector<Variant> variants(bool alternatives) {
     return v;
 }
 
-static bool nearLamp(const Image& ref, int x, int y) {
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            int u = x + dx, v = y + dy;
-            if (u >= 0 && v >= 0 && u < ref.width && v < ref.height && maxComponent(ref.at(u, v)) > 5) return true;
-        }
-    return false;
+static double maskedMse(const Image& img, const Image& ref) {  // without the lamp's pixels (nearLamp)
+    double rmse = compareToReference(img, ref).rmseWithoutLamp;
+    return rmse * rmse;
 }
 
-static double maskedMse(const Image& img, const Image& ref) {
-    double sum = 0;
-    long n = 0;
+// The pixels whose central camera ray first meets a mirror or glass. What they show arrives
+// along ... S E, which no connection can end (the camera cannot connect through a specular
+// vertex): there only s = 0 and, for vcm, merges help (panel (f)'s SDS limit), so their share
+// of a method's squared error says how much of it the transport could not reach otherwise.
+static std::vector<bool> seesSpecular(const Scene& scene) {
+    const Camera& cam = scene.camera;
+    std::vector<bool> mask(size_t(cam.width) * cam.height);
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            Hit hit = intersect(scene, cameraRay(cam, x + 0.5f, y + 0.5f));
+            mask[size_t(y) * cam.width + x] = hit.found() && isSpecular(scene.materials[scene.shapes[hit.shape].material]);
+        }
+    return mask;
+}
+
+static double specularShare(const Image& img, const Image& ref, const std::vector<bool>& mask) {
+    double inside = 0, all = 0;
     for (int y = 0; y < ref.height; ++y)
         for (int x = 0; x < ref.width; ++x) {
             if (nearLamp(ref, x, y)) continue;
-            for (int c = 0; c < 3; ++c) sum += sqr(img.at(x, y)[c] - ref.at(x, y)[c]);
-            n += 3;
+            double e = 0;
+            for (int c = 0; c < 3; ++c) e += sqr(img.at(x, y)[c] - ref.at(x, y)[c]);
+            all += e;
+            if (mask[size_t(y) * ref.width + x]) inside += e;
         }
-    return sum / std::max(1L, n);
+    return all > 0 ? inside / all : 0;
 }
 
 int main(int argc, char** argv) {
@@ -102,7 +112,8 @@ int main(int argc, char** argv) {
     for (const Variant& v : variants(alternatives))
         if (only.empty() || v.label.find(only) != std::string::npos || v.label == "nee --mis") runs.push_back(v);
     std::printf("Equal samples (%d per pixel), %d seeds, one thread; medians over the seeds.\n\n", spp, seeds);
-    std::printf("| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis |\n|---|---|---|---|---|---|\n");
+    std::printf("| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |\n"
+                "|---|---|---|---|---|---|---|\n");
     for (const std::string& name : scenes) {
         Scene scene;
         Image ref;
@@ -117,7 +128,8 @@ int main(int argc, char** argv) {
             return 2;
         }
         setResolution(scene.camera, ref.width, ref.height);
-        std::vector<std::vector<double>> mse(runs.size()), cpu(runs.size()), rays(runs.size());
+        std::vector<std::vector<double>> mse(runs.size()), cpu(runs.size()), rays(runs.size()), share(runs.size());
+        std::vector<bool> specularPixels = seesSpecular(scene);
         for (int seed = 1; seed <= seeds; ++seed)
             for (size_t v = 0; v < runs.size(); ++v) {
                 RenderOptions o = runs[v].opt;
@@ -127,6 +139,7 @@ int main(int argc, char** argv) {
                 RenderResult r = render(scene, o);
                 cpu[v].push_back(threadCpuSeconds() - c0);
                 mse[v].push_back(maskedMse(r.image, ref));
+                share[v].push_back(specularShare(r.image, ref, specularPixels));
                 rays[v].push_back(double(r.rays.closest + r.rays.shadow) / (double(r.passes) * ref.width * ref.height));
                 std::fprintf(stderr, "\r%s: seed %d/%d, %zu/%zu   ", name.c_str(), seed, seeds, v + 1, runs.size());
             }
@@ -136,8 +149,8 @@ int main(int argc, char** argv) {
             if (runs[v].label == "nee --mis") baseline = 1 / (median(mse[v]) * median(cpu[v]));
         for (size_t v = 0; v < runs.size(); ++v) {
             double m = median(mse[v]), c = median(cpu[v]);
-            std::printf("| %s | %s | %.3g | %.3f | %.2f | %.2fx |\n", name.c_str(), runs[v].label.c_str(), m, c, median(rays[v]),
-                        1 / (m * c) / baseline);
+            std::printf("| %s | %s | %.3g | %.3f | %.2f | %.2fx | %.0f%% |\n", name.c_str(), runs[v].label.c_str(), m, c, median(rays[v]),
+                        1 / (m * c) / baseline, 100 * median(share[v]));
         }
         std::fflush(stdout);
     }

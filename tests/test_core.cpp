@@ -91,7 +91,7 @@ TEST_CASE("furnace: L = Le / (1 - a) = 2 within 1% for every method; truncated a
     Scene scene = sceneAt("scenes/furnace.scene", 32, 32);
     struct Run { Method m; bool mis; };
     for (Run run : {Run{Method::PT, false}, Run{Method::NEE, false}, Run{Method::NEE, true}, Run{Method::LT, false},
-                    Run{Method::IR, false}, Run{Method::BDPT, false}}) {
+                    Run{Method::IR, false}, Run{Method::BDPT, false}, Run{Method::VCM, false}}) {
         RenderOptions o = quietOptions(run.m, 64);
         o.mis = run.mis;  // nee --mis: a light density without the light's cosine gave 2.19
         RenderResult r = render(scene, o);

@@ -23,6 +23,17 @@ TEST_CASE("metrics on synthetic images with known answers") {
     Image dark = constantImage(10, 10, 0.5f);
     CHECK(compareToReference(dark, ref).bias == doctest::Approx(-0.5));
     CHECK(compareToReference(dark, ref).relMse == doctest::Approx(0.25 / 1.01).epsilon(1e-4));
+    // A lamp pixel (above 5) at (7, 2): it and its 8 neighbours leave rmse_without_lamp.
+    Image lampRef = constantImage(10, 10, 1), lampImg = constantImage(10, 10, 1);
+    lampRef.at(7, 2) = Vec3(17);
+    lampImg.at(7, 2) = Vec3(15);   // error 2 on the lamp
+    lampImg.at(8, 3) = Vec3(2);    // error 1 beside it
+    lampImg.at(0, 9) = Vec3(1.5f); // error 0.5 far away
+    ErrorMetrics lamp = compareToReference(lampImg, lampRef);
+    CHECK(lamp.rmse == doctest::Approx(std::sqrt((4 + 1 + 0.25) / 100)).epsilon(1e-5));
+    CHECK(lamp.rmseWithoutLamp == doctest::Approx(std::sqrt(0.25 / 91)).epsilon(1e-5));
+    CHECK(nearLamp(lampRef, 6, 1));
+    CHECK(!nearLamp(lampRef, 5, 2));
 }
 
 // `bdpt OPTION A.pfm B.pfm --out build/tmp_NAME.png` on two images written for it; the PFM it
