@@ -1459,8 +1459,10 @@ inline void scatteringDensities(const Scene& scene, const PathVertex& v, Vec3 w,
 // path.back(), both evaluated on the vertices' positions (not on the sampled direction, which
 // leaves from an offset origin), so that every strategy's density of one path is computed on the
 // same geometry. Each carries the continuation probability of the vertex it was sampled at.
-inline void appendVertex(const Scene& scene, std::vector<PathVertex>& path, PathVertex v, Transport mode) {
-    const size_t i = path.size();
+inline void appendVertex(const Scene& scene, std::vector<PathVertex>& path, const PathVertex& vertex, Transport mode) {
+    path.push_back(vertex);
+    const size_t i = path.size() - 1;
+    PathVertex& v = path[i];
     const PathVertex& prev = path[i - 1];
     float pdf, pdfReverse;
     scatteringDensities(scene, prev, -v.wo, mode, pdf, pdfReverse);
@@ -1470,7 +1472,6 @@ inline void appendVertex(const Scene& scene, std::vector<PathVertex>& path, Path
         v.pdfFwd = prev.continuation;
         if (i >= 2) path[i - 2].pdfRev = prev.continuation;
     }
-    path.push_back(v);
 }
 
 // Extends a subpath by BSDF sampling, each new vertex by appendVertex.
@@ -1715,16 +1716,18 @@ inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rn
 // sampled there, pdfFwd of the next vertex and pdfRev of the one before, carries that q, and the
 // strategy whose subpath survived more roulette gets less weight. A throughput-relative q (pt's)
 // cannot be counted so: the other subpath's q at a vertex depends on its unknown throughput.
-// Measured by `make efficiency` (64x64, 256 samples, 4 seeds, efficiency against nee --mis):
+// Measured by `build/efficiency --alternatives` (64x64, 256 samples, 4 seeds, efficiency against
+// nee --mis, with the densities through specular vertices of issue 24):
 //   roulette                   cornell   cornell-glass   indirect   glass-box   (cost/sample)
-//   throughput after 3 (pt's)   0.80x        1.00x          6.94x       1.31x      1
-//   albedo, in the densities    0.90x        1.55x          7.96x       1.96x      0.64-0.71
-//   albedo, not in them         0.89x         ...            ...         ...
-//   none (at most 9 bounces)    0.56x        0.90x          4.64x       1.25x      1.42-1.56
-// so albedo, counted in the densities. On glass-box it does not lower the error at equal
-// samples (MSE 0.99x): half of that error lies in the pixels seeing the two balls, in paths like
-// the floor caustic seen through glass (L S S D S S E), which only s = 0 makes (panel (f)'s SDS
-// limit); even no roulette at all lowers it by a quarter only, at 1.4x the cost.
+//   throughput after 3 (pt's)   0.74x        1.85x          6.52x       2.07x      1
+//   albedo, in the densities    0.82x        3.35x          7.56x       2.67x      0.62-0.72
+//   none (at most 9 bounces)    0.51x        1.92x          4.54x       1.69x      1.44-1.53
+// so albedo, counted in the densities (not counting it was 0.89x against 0.90x on cornell,
+// measured before issue 24). Its lower error per sample is not why: throughput roulette, and no
+// roulette at all, reach lower MSE at equal samples on glass-box (1.09e-4 and 0.91e-4 against
+// 1.17e-4) but cost 1.4x and 2x as much. On glass-box 79% of the remaining squared error lies in
+// the pixels that see a mirror or glass (make efficiency's last column), in paths like the floor
+// caustic seen through glass (L S S D S S E), which only s = 0 makes (panel (f)'s SDS limit).
 enum class Heuristic { Balance, Power, Max, Uniform };
 
 // A subpath, or the first vertices of one: bdpt's own vectors, and vcm's light subpaths, which
