@@ -64,6 +64,10 @@ refs: bdpt
 charts: bdpt
 	tests/charts.sh charts
 
+# The slides' six panels at 40 paths per pixel, for a class: build/panels/six-panels-40.png.
+panels: bdpt
+	tests/charts.sh panels
+
 figures: bdpt build/estimators
 	tests/charts.sh figures
 	tests/charts.sh notes
@@ -129,4 +133,4 @@ efficiency: build/efficiency
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize fuzz bench efficiency refs charts figures clean FORCE
+.PHONY: all run test test-sanitize fuzz bench efficiency refs charts panels figures clean FORCE

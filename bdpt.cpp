@@ -14,6 +14,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cerrno>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include <ctime>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -29,6 +31,7 @@
 #include <string>
 #include <thread>
 #include <vector>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 // stb_image_write: Debian's libstb-dev (the header in stb/, its code in -lstb), or where that is
@@ -2106,9 +2109,15 @@ inline float mergeRadius(const Scene& scene, const RenderOptions& opt, int pass)
 inline RayCount parallelRows(int rows, int threads, const std::function<void(int, bool)>& body) {
     std::atomic<int> nextRow{0};
     std::atomic<long long> closest{0}, shadow{0};
+    std::atomic<bool> outOfMemory{false};
     auto worker = [&](bool onCallingThread) {
         RayCount before = gRaysTraced;
-        for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y, onCallingThread);
+        try {
+            for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y, onCallingThread);
+        } catch (const std::bad_alloc&) {  // thrown on, by the calling thread, once all have stopped
+            outOfMemory = true;
+            nextRow = rows;
+        }
         closest += gRaysTraced.closest - before.closest;
         shadow += gRaysTraced.shadow - before.shadow;
     };
@@ -2116,6 +2125,7 @@ inline RayCount parallelRows(int rows, int threads, const std::function<void(int
     for (int i = 1; i < threads; ++i) pool.emplace_back(worker, false);
     worker(true);
     for (std::thread& t : pool) t.join();
+    if (outOfMemory) throw std::bad_alloc();
     return {closest.load(), shadow.load()};
 }
 
@@ -2833,10 +2843,11 @@ Speed against accuracy
                     mean, bias, firefly, nan_count, rmse_without_lamp (the lamp's pixels and their
                     neighbours left out); error columns empty without --ref
   --compare A.pfm B.pfm  print rmse, relmse and bias of A against B (e.g. two seeds of a reference)
-  --average A.pfm B.pfm  write the mean of A and B to --out (and its PFM): a reference from two seeds
-  --ratio A.pfm B.pfm    write A/B over 4x4-pixel blocks to --out in false colour (white: equal,
-                    red: A brighter, blue: A darker, full colour at one stop; the PFM holds the
-                    ratios) and print its percentiles: where two methods differ
+  --average A.pfm B.pfm  write the mean of A and B to --out (required; and its PFM): a reference
+                    from two seeds
+  --ratio A.pfm B.pfm    write A/B over 4x4-pixel blocks to --out (required) in false colour
+                    (white: equal, red: A brighter, blue: A darker, full colour at one stop; the
+                    PFM holds the ratios) and print its percentiles: where two methods differ
   --failure-table LOG.csv...  print the README's failure table (markdown) from such logs:
                     slope of log(rmse) against log(seconds), bias, fireflies, NaN count
 Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene
@@ -2851,8 +2862,12 @@ inline int writeRatio(const Image& a, const Image& b, const std::string& png, st
     std::vector<float> q;
     for (const Vec3& p : r.pixels)
         if (std::isfinite(p.x)) q.push_back(p.x);
+    if (q.empty()) {
+        err << "bdpt: cannot divide: B is black in every 4x4 block, so A/B is nowhere defined\n";
+        return 2;
+    }
     std::sort(q.begin(), q.end());
-    auto pct = [&](double f) { return q.empty() ? 0.0f : q[size_t(f * (q.size() - 1))]; };
+    auto pct = [&](double f) { return q[size_t(f * (q.size() - 1))]; };
     size_t off = size_t(std::count_if(q.begin(), q.end(), [](float v) { return std::fabs(std::log2(v)) > 0.5f; }));
     out << "ratio of means " << imageMean(a) / imageMean(b) << "; A/B over 4x4 blocks: 5% " << pct(0.05) << ", median "
         << pct(0.5) << ", 95% " << pct(0.95) << "; " << 100.0 * off / std::max<size_t>(1, q.size())
@@ -2860,7 +2875,10 @@ inline int writeRatio(const Image& a, const Image& b, const std::string& png, st
     std::string pfm = replaceExtension(png, ".pfm");
     Image colours = ratioColours(r);
     for (Vec3& p : r.pixels) p = std::isfinite(p.x) ? p : Vec3(0);
-    if (writePNG(colours, png, 0) && writePFM(r, pfm)) return 0;
+    if (writePNG(colours, png, 0) && writePFM(r, pfm)) {
+        out << "wrote " << png << " and " << pfm << "\n";
+        return 0;
+    }
     err << "bdpt: cannot write " << png << " or " << pfm << "\n";
     return 1;
 }
@@ -2984,6 +3002,8 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
     if (cl.help || !cl.failureLogs.empty()) return cl;
     if (!hasExtension(cl.out, ".png")) fail("--out must name a .png file (the PFM goes beside it), got '" + printable(cl.out) + "'");
     if (!cl.logPath.empty() && !hasExtension(cl.logPath, ".csv")) fail("--log must name a .csv file, got '" + printable(cl.logPath) + "'");
+    if ((cl.average || cl.ratio) && !given.count("--out"))
+        fail(std::string(cl.average ? "--average" : "--ratio") + " writes an image: name it with --out FILE.png");
     if (!cl.pfmA.empty()) return cl;
     // Options that would be ignored by the chosen method are mistakes: say whose they are.
     auto onlyFor = [&](const char* option, std::initializer_list<Method> methods, const char* whose) {
@@ -3042,6 +3062,14 @@ inline std::string unwritable(const std::string& path) {
     if (stat(dir.c_str(), &st) != 0) return "the folder " + dir + " does not exist";
     if (!S_ISDIR(st.st_mode)) return dir + " is not a folder";
     if (access(dir.c_str(), W_OK) != 0) return "no permission to write in " + dir;
+    if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return "it is not a regular file";
+    // /proc, /sys and the like pass the permission check as root and refuse files only when one
+    // is made: make one now (and remove it), not after the render.
+    std::string probe = dir + "/.bdpt-probe-" + std::to_string(getpid());
+    std::FILE* f = std::fopen(probe.c_str(), "wb");
+    if (!f) return "no file can be made in " + dir + " (" + std::strerror(errno) + ")";
+    std::fclose(f);
+    std::remove(probe.c_str());
     return "";
 }
 
@@ -3082,6 +3110,27 @@ inline std::string checkOutputs(const CommandLine& cl, const std::string& pfm) {
 // Mistakes in a scene that still renders, but not as its author meant: said before the work.
 //  - one light takes nearly all of the choice by power (a huge dim sky sphere starves a lamp);
 //  - a quick preview sees no light at all (a lamp facing away, or a light in a closed box).
+// What a render will hold, in bytes, known before it starts: per pixel the pass sums and squares
+// (6 doubles), the pass, the image and its variance (3 Vec3), the PNG's bytes, the log's running
+// mean, two sums per strategy image and the image written; vcm's light subpaths and grid of a
+// pass, estimated at 2 KB a pixel (its summary line measured 0.7 KB on cornell and 1.4 KB on
+// sds-point, at 256x256 and 1024x1024; a 6 GB limit stopped it at 2048x2048 on cornell).
+inline double estimatedBytes(const Scene& scene, const RenderOptions& opt, bool logging) {
+    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
+    int images = L * (L + 3) / 2 + (opt.method == Method::VCM ? L : 0);
+    double perPixel = 6 * sizeof(double) + 3 * sizeof(Vec3) + 3 + (logging ? 3 * sizeof(double) + sizeof(Vec3) : 0) +
+                      images * (2 * 3 * sizeof(double) + sizeof(Vec3) + 3) + (opt.method == Method::VCM ? 2048 : 0);
+    return perPixel * scene.camera.width * scene.camera.height;
+}
+
+// The memory this process may use: the machine's, or less where `ulimit -v` says so.
+inline double memoryLimitBytes() {
+    double machine = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+    struct rlimit limit;
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) return std::min(machine, double(limit.rlim_cur));
+    return machine;
+}
+
 inline void warnAboutScene(const Scene& scene, const RenderOptions& opt, std::ostream& err) {
     for (size_t i = 0; i < scene.lights.size() && scene.lights.size() > 1; ++i) {
         float share = lightChoiceProbability(scene, int(i));
@@ -3114,15 +3163,29 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         if (!cl.failureLogs.empty()) return printFailureTable(cl.failureLogs, out, err);
         if (!cl.pfmA.empty()) {
             Image a, b;
-            if (!readPFM(cl.pfmA, a) || !readPFM(cl.pfmB, b) || a.width != b.width || a.height != b.height) {
-                err << "bdpt: cannot " << (cl.average ? "average " : cl.ratio ? "divide " : "compare ") << cl.pfmA << " and " << cl.pfmB
-                    << " (two PFMs of one size)\n";
+            const char* verb = cl.average ? "average" : cl.ratio ? "divide" : "compare";
+            for (auto [path, img] : {std::make_pair(&cl.pfmA, &a), std::make_pair(&cl.pfmB, &b)}) {
+                struct stat st;
+                const char* problem = stat(path->c_str(), &st) != 0 ? "does not exist"
+                                      : !readPFM(*path, *img)           ? "is not a PFM image (as bdpt writes)"
+                                                                         : nullptr;
+                if (problem) {
+                    err << "bdpt: cannot " << verb << ": " << *path << " " << problem << "\n";
+                    return 2;
+                }
+            }
+            if (a.width != b.width || a.height != b.height) {
+                err << "bdpt: cannot " << verb << ": " << cl.pfmA << " is " << a.width << "x" << a.height << ", " << cl.pfmB
+                    << " is " << b.width << "x" << b.height << "\n";
                 return 2;
             }
             if (cl.average) {
                 for (size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = (a.pixels[i] + b.pixels[i]) * 0.5f;
                 std::string pfm = replaceExtension(cl.out, ".pfm");
-                if (writePNG(a, cl.out, cl.opt.exposure) && writePFM(a, pfm)) return 0;
+                if (writePNG(a, cl.out, cl.opt.exposure) && writePFM(a, pfm)) {
+                    out << "wrote " << cl.out << " and " << pfm << "\n";
+                    return 0;
+                }
                 err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
                 return 1;
             }
@@ -3142,6 +3205,13 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     std::string problem = checkOutputs(cl, pfm);
     if (!problem.empty()) {
         err << "bdpt: " << problem << " (nothing rendered)\n";
+        return 1;
+    }
+    double needed = estimatedBytes(scene, cl.opt, !cl.logPath.empty()), limit = memoryLimitBytes();
+    if (needed + 200e6 > limit) {  // 200 MB for the program, its threads' stacks and the scene
+        err << "bdpt: this render needs about " << std::setprecision(2) << std::fixed << needed / 1e9 << " GB for "
+            << scene.camera.width << "x" << scene.camera.height << " pixels, more than the " << limit / 1e9
+            << " GB this process may use (the machine's memory or ulimit -v): use a smaller --res (nothing rendered)\n";
         return 1;
     }
     warnAboutScene(scene, cl.opt, err);
@@ -3226,6 +3296,11 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
 #ifndef BDPT_NO_MAIN
 int main(int argc, char** argv) {
     std::signal(SIGINT, onInterrupt);
-    return runCommandLine(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr);
+    try {
+        return runCommandLine(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr);
+    } catch (const std::bad_alloc&) {  // past the estimate: a scene larger than it, or a lower limit
+        std::cerr << "bdpt: out of memory (a smaller --res, fewer --strategies, or another method); no file written\n";
+        return 4;
+    }
 }
 #endif

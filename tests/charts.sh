@@ -3,6 +3,7 @@
 #   tests/charts.sh refs      references of every scene (once; kept in scenes/refs/, reused)
 #   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts
 #                             in lecture_notes/figures/, and the failure table in Appendix A of the notes
+#   tests/charts.sh panels    the six panels at 40 paths per pixel into build/panels/ (make panels)
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time,
 #                             the thin-gap figure, sds-point by pt, bdpt and vcm (sds-vcm.png), the
 #                             combination-of-estimators example and the furnace's series
@@ -196,24 +197,28 @@ refcheck() {
   echo "reference check: $FIG/reference-check.md (and $RECORD)"
 }
 
-figures() {
+# The slides' six panels (a)-(f) on cornell-glass, one figure per KIND: 40 (paths per pixel) or
+# time (every method for the time bdpt needs for 40), in $FIG/six-panels-KIND.png.
+sixPanels() {
   local scene=cornell-glass panels="pt|(a) eye tracing (pt)|--method pt
 nee|(b) eye tracing + next event (nee)|--method nee
 lt|(c) next event: light tracing (lt)|--method lt
 ir|(d) instant radiosity (ir)|--method ir
 irc|(e) instant radiosity, clamped|--method ir --clamp 1e-5
 bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
-  mkdir -p "$LOGS/fig"
-  # 40 paths per pixel; then every method for the time bdpt took.
-  while IFS='|' read -r name title opts; do
-    ./bdpt scenes/$scene.scene $opts --spp 40 --quiet --out "$LOGS/fig/$name-40.png"
-  done <<< "$panels"
-  t=$(./bdpt scenes/$scene.scene --method bdpt --spp 40 --out "$LOGS/fig/t.png" | sed -n 's/.* in \([0-9.e+-]*\) s.*/\1/p')
-  while IFS='|' read -r name title opts; do
-    ./bdpt scenes/$scene.scene $opts --time "$t" --quiet --out "$LOGS/fig/$name-time.png"
-  done <<< "$panels"
-  for kind in 40 time; do
-    caption="40 paths per pixel"; [ $kind = time ] && caption="equal time: $t s each (what bdpt needs for 40 paths per pixel)"
+  mkdir -p "$LOGS/fig" "$FIG"
+  for kind in "$@"; do
+    if [ "$kind" = 40 ]; then
+      while IFS='|' read -r name title opts; do
+        ./bdpt scenes/$scene.scene $opts --spp 40 --quiet --out "$LOGS/fig/$name-40.png"
+      done <<< "$panels"
+    else
+      t=$(./bdpt scenes/$scene.scene --method bdpt --spp 40 --out "$LOGS/fig/t.png" | sed -n 's/.* in \([0-9.e+-]*\) s.*/\1/p')
+      while IFS='|' read -r name title opts; do
+        ./bdpt scenes/$scene.scene $opts --time "$t" --quiet --out "$LOGS/fig/$name-time.png"
+      done <<< "$panels"
+    fi
+    caption="40 paths per pixel"; [ "$kind" = time ] && caption="equal time: $t s each (what bdpt needs for 40 paths per pixel)"
     {
       echo 'set terminal pngcairo size 1200,880 font "sans,12"'
       echo "set output '$FIG/six-panels-$kind.png'"
@@ -227,6 +232,16 @@ bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
     } | gnuplot
     echo "figure $FIG/six-panels-$kind.png"
   done
+}
+
+# make panels: the six panels at 40 paths per pixel for a class, into build/panels/ (no committed
+# file is touched; make figures makes the committed ones).
+panels() {
+  FIG=build/panels LOGS=build/panels sixPanels 40
+}
+
+figures() {
+  sixPanels 40 time
   thingap
   sds
   estimators

@@ -31,7 +31,47 @@ TEST_CASE("output paths are checked before rendering: the path and the reason, s
     r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh_folder.png"});
     CHECK(r.status == 1);
     CHECK(contains(r.err, "cannot write build/tmp_fh_folder.png: it is a folder"));
+    // /proc lets root pass the permission check and refuses the file only when it is made.
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "/proc/tmp_fh.png"});
+    CHECK(r.status == 1);
+    CHECK(contains(r.err, "cannot write /proc/tmp_fh.png: "));
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh_log.png", "--log", "/dev/null"});
+    CHECK(r.status == 2);  // not a .csv name, before anything else
+    symlink("/dev/null", "build/tmp_fh_device.csv");
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh_dev.png", "--log", "build/tmp_fh_device.csv"});
+    CHECK(r.status == 1);
+    CHECK(contains(r.err, "cannot write build/tmp_fh_device.csv: it is not a regular file"));
     CHECK(secondsSince(t0) < 5);  // 100,000 passes were asked for each time: none was rendered
+}
+
+// The memory a render needs is estimated before it starts and compared with what the process may
+// use (here a 2 GB `ulimit -v`): 8000x8000 (5.6 GB) is refused at once, with the estimate; a
+// small render under the same limit runs.
+static std::pair<int, std::string> shellRun(const std::string& command) {
+    std::string text;
+    FILE* p = popen(("bash -c '" + command + "' 2>&1").c_str(), "r");
+    REQUIRE(p);
+    char buffer[512];
+    for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, p)) > 0;) text.append(buffer, n);
+    int status = pclose(p);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+TEST_CASE("memory is estimated before work: a render beyond the process's limit is refused with the estimate") {
+    auto t0 = std::chrono::steady_clock::now();
+    auto [status, text] = shellRun("ulimit -v 2000000; ./bdpt scenes/cornell.scene --res 8000x8000 --out build/tmp_fh_mem.png");
+    CHECK(status == 1);
+    CHECK(contains(text, "this render needs about 5."));
+    CHECK(contains(text, "GB for 8000x8000 pixels, more than the 2.05 GB this process may use"));
+    CHECK(!fileExists("build/tmp_fh_mem.png"));
+    CHECK(secondsSince(t0) < 5);
+    auto [small, smallText] = shellRun("ulimit -v 2000000; ./bdpt scenes/cornell.scene --res 32x32 --spp 1 --quiet --out build/tmp_fh_mem.png");
+    CHECK(small == 0);
+    CHECK(fileExists("build/tmp_fh_mem.png"));
+    // vcm holds every light vertex of a pass: at 1024x1024 about 2 GB more.
+    auto [vcm, vcmText] = shellRun("ulimit -v 2000000; ./bdpt scenes/cornell.scene --method vcm --res 1024x1024 --out build/tmp_fh_vcm.png");
+    CHECK(vcm == 1);
+    CHECK(contains(vcmText, "GB for 1024x1024 pixels"));
 }
 
 TEST_CASE("--out takes a .png name only, and no run writes over one of its inputs") {

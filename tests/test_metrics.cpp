@@ -60,8 +60,19 @@ TEST_CASE("--average: the mean of two references, and refusal of images of diffe
     CHECK(mean.at(0, 0).y == 2.0f);
     CHECK(mean.at(5, 3).z == 6.0f);
     CHECK(fileExists("build/tmp_avg.png"));
+    CHECK(so.str().find("wrote build/tmp_avg.png and build/tmp_avg.pfm") != std::string::npos);
     CHECK(runCommandLine({"--average", "build/tmp_avg_a.pfm", "build/tmp_avg_small.pfm", "--out", "build/tmp_avg2.png"}, so, se) == 2);
     CHECK(!fileExists("build/tmp_avg2.pfm"));
+    // Each refusal names the input and what is wrong with it.
+    CHECK(se.str().find("cannot average: build/tmp_avg_a.pfm is 6x4, build/tmp_avg_small.pfm is 4x4") != std::string::npos);
+    std::ostringstream se2, se3, se4;
+    CHECK(runCommandLine({"--average", "build/tmp_avg_a.pfm", "build/no_such.pfm", "--out", "build/tmp_avg2.png"}, so, se2) == 2);
+    CHECK(se2.str().find("build/no_such.pfm does not exist") != std::string::npos);
+    CHECK(runCommandLine({"--compare", "build/tmp_avg_a.pfm", "Makefile"}, so, se3) == 2);
+    CHECK(se3.str().find("cannot compare: Makefile is not a PFM image") != std::string::npos);
+    // Without --out an image-writing command refuses instead of writing over render.png.
+    CHECK(runCommandLine({"--ratio", "build/tmp_avg_a.pfm", "build/tmp_avg_b.pfm"}, so, se4) == 2);
+    CHECK(se4.str().find("--ratio writes an image: name it with --out FILE.png") != std::string::npos);
 }
 
 TEST_CASE("--ratio: A/B over 4x4 blocks, in false colour, with its percentiles") {
@@ -82,6 +93,12 @@ TEST_CASE("--ratio: A/B over 4x4 blocks, in false colour, with its percentiles")
     CHECK(colours.at(0, 0).y == 0.0f);             // one stop brighter: full red
     CHECK(colours.at(5, 5).y == 1.0f);             // equal: white
     CHECK(so.str().find("% of the blocks more than half a stop apart") != std::string::npos);
+    CHECK(so.str().find("wrote build/tmp_ratio.png and build/tmp_ratio.pfm") != std::string::npos);
+    // Against an all-black image every block is undefined: said so, not "0% apart".
+    std::ostringstream so2;
+    Image unused;
+    CHECK(twoImageCommand("--ratio", a, constantImage(8, 8, 0), "ratio_black", unused, so2) == 2);
+    CHECK(!fileExists("build/tmp_ratio_black.png"));
 }
 
 TEST_CASE("the failure table: slope of log(rmse) against log(time), last bias, fireflies and NaNs") {
