@@ -107,7 +107,7 @@ TEST_CASE("sds-ior1: vcm converges to the room without the balls, bdpt misses th
     CHECK(meanError[1] < 0.02);
     CHECK(meanError[0] < 0.04);
     // Where a bias that depends on the pass is largest: 4 passes, 4 seeds. A pass that divides by
-    // the previous pass's pi r^2 N (the first merging nothing) was -20% here.
+    // the previous pass's pi r^2 N (the first merging nothing) was -18% here.
     double shortBias = 0;
     for (int seed = 11; seed <= 14; ++seed) shortBias += compareToReference(render(balls, quietOptions(Method::VCM, 4, seed)).image, reference).bias / 4;
     MESSAGE("vcm at 4 passes: bias of the mean " << shortBias);
@@ -159,9 +159,8 @@ TEST_CASE("vcm's merges alone estimate the direct light as next event does, on a
 // i^(alpha-1), so r_i = r_0 i^((alpha-1)/2), with i = pass + 1. A merge of pass i divides by
 // pi r_i^2 N with that pass's own r_i. The expected values are the closed forms, not mergeRadius().
 // Bugs caught: the exponent of the squared radius on the radius (r_0 i^(alpha-1): r at pass 16
-// is 0.5 r_0 instead of 0.71 r_0; noise on sds-ior1 at 256 passes 1.5x) and pi r^2 N from the
-// previous pass's radius (the first pass's eta is 0, so it merges nothing; sds-ior1 -20% at 4
-// passes).
+// is 0.5 r_0 instead of 0.71 r_0) and pi r^2 N from the previous pass's radius (the first pass's
+// eta is 0, so it merges nothing; sds-ior1 -18% at 4 passes).
 TEST_CASE("the radius schedule r_i = r_0 i^((alpha-1)/2), and each light pass divides by pi r_i^2 N with its own r_i") {
     Scene scene = sceneAt("scenes/cornell.scene", 16, 12);
     RenderOptions o = quietOptions(Method::VCM, 1);
