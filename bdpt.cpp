@@ -1903,6 +1903,10 @@ inline int strategyIndex(int s, int t) {  // rows by k, s = 0..k within a row
     return k * (k + 1) / 2 - 1 + s;
 }
 inline int mergeImageIndex(int k, int maxLength) { return maxLength * (maxLength + 3) / 2 + k - 1; }
+inline int strategyImageCount(const RenderOptions& opt) {  // vcm: one merge image per length
+    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
+    return opt.method == Method::VCM ? mergeImageIndex(L + 1, L) : L * (L + 3) / 2;
+}
 
 // The light subpath of pixel `pixel` in pass `pass`: a stream of its own, apart from the pixel's
 // camera stream, so that vcm, which traces all light subpaths of a pass first, makes the same
@@ -2378,9 +2382,7 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
     std::vector<Vec3> pass(size_t(W) * H);
     std::vector<RowOutput> rows(H);
     double energyUnclamped = 0, energyClamped = 0;
-    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
-    int images = L * (L + 3) / 2 + (opt.method == Method::VCM ? L : 0);  // vcm: one merge image per length
-    std::vector<std::vector<double>> strategySum(2 * images, std::vector<double>(3 * size_t(W) * H, 0.0));
+    std::vector<std::vector<double>> strategySum(2 * strategyImageCount(opt), std::vector<double>(3 * size_t(W) * H, 0.0));
     RenderResult result;
     PassData passData;  // kept from pass to pass: vcm reuses its buffers
     ProgressBar bar;
@@ -3116,8 +3118,7 @@ inline std::string checkOutputs(const CommandLine& cl, const std::string& pfm) {
 // pass, estimated at 2 KB a pixel (its summary line measured 0.7 KB on cornell and 1.4 KB on
 // sds-point, at 256x256 and 1024x1024; a 6 GB limit stopped it at 2048x2048 on cornell).
 inline double estimatedBytes(const Scene& scene, const RenderOptions& opt, bool logging) {
-    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
-    int images = L * (L + 3) / 2 + (opt.method == Method::VCM ? L : 0);
+    int images = strategyImageCount(opt);
     double perPixel = 6 * sizeof(double) + 3 * sizeof(Vec3) + 3 + (logging ? 3 * sizeof(double) + sizeof(Vec3) : 0) +
                       images * (2 * 3 * sizeof(double) + sizeof(Vec3) + 3) + (opt.method == Method::VCM ? 2048 : 0);
     return perPixel * scene.camera.width * scene.camera.height;
