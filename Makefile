@@ -39,7 +39,7 @@ build/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h tests/densities.h bu
 
 # Runs the test programs $(1); the last line sums their test cases ("N passed, N failed").
 define run-tests
-	@status=0; for t in $(1); do echo "== $$t"; ./$$t 2>&1 | tee $$t.log; [ $${PIPESTATUS[0]} -eq 0 ] || status=1; done; \
+	@status=0; for t in $(1); do echo "== $$t"; ./$$t --reporters=notes 2>&1 | tee $$t.log; [ $${PIPESTATUS[0]} -eq 0 ] || status=1; done; \
 	cat $(addsuffix .log,$(1)) | awk '/test cases:/ { p += $$6; f += $$9 } END { printf "tests: %d passed, %d failed\n", p, f }'; \
 	exit $$status
 endef
@@ -121,6 +121,14 @@ build/estimators: tests/estimators.cpp tests/bench.h tests/densities.h bdpt.cpp 
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
+# Uneven convergence (tests/uneven.cpp): bdpt, mlt and mmlt per region on the door scene at
+# equal time, into build/ (make figures puts its figure into the notes).
+build/uneven: tests/uneven.cpp tests/bench.h bdpt.cpp build/flags
+	@mkdir -p build
+	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
+uneven: build/uneven
+	./build/uneven $(UNEVEN_ARGS)
+
 # The table goes to lecture_notes/figures/efficiency.md and into Appendix A of the notes.
 efficiency: build/efficiency
 	./build/efficiency $(EFFICIENCY_ARGS) > build/efficiency.md.tmp && mv build/efficiency.md.tmp lecture_notes/figures/efficiency.md
@@ -128,9 +136,16 @@ efficiency: build/efficiency
 	  /<!-- efficiency:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next } \
 	  /<!-- efficiency:end -->/ { skip = 0 } \
 	  !skip' lecture_notes/appendix-a-speed-and-accuracy.md > build/appendix-a.tmp && mv build/appendix-a.tmp lecture_notes/appendix-a-speed-and-accuracy.md
+	grep -E '^\| (door|cornell|cornell-glass|glass-box) \| (nee --mis|lt|bdpt|mlt|mmlt) \|' lecture_notes/figures/efficiency.md | \
+	  { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'; \
+	    echo '|---|---|---|---|---|---|---|'; cat; } > build/metropolis-efficiency.md
+	awk -v table=build/metropolis-efficiency.md ' \
+	  /<!-- metropolis-efficiency:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next } \
+	  /<!-- metropolis-efficiency:end -->/ { skip = 0 } \
+	  !skip' lecture_notes/16-metropolis-sampling.md > build/page16.tmp && mv build/page16.tmp lecture_notes/16-metropolis-sampling.md
 	cat lecture_notes/figures/efficiency.md
 
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize fuzz bench efficiency refs charts panels figures clean FORCE
+.PHONY: all run test test-sanitize fuzz bench efficiency uneven refs charts panels figures clean FORCE

@@ -5,7 +5,7 @@
 // Read it top to bottom with the slides open:
 //   1 math & random numbers   2 geometry            3 BVH                 4 materials (BSDFs)
 //   5 lights                  6 camera              7 scene file
-//   8 integrators: pt, nee, lt, ir, bdpt, and the slides' "later", vcm
+//   8 integrators: pt, nee, lt, ir, bdpt, and the slides' "later", vcm, mlt and mmlt
 //   9 film & rendering loop  10 command line
 // Units: radiance L, intensity I, power Phi, importance W_e. Directions point away from surfaces.
 // ============================================================================================
@@ -30,6 +30,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -79,15 +80,20 @@ inline float sqr(float x) { return x * x; }
 
 // PCG32 (O'Neill): small state, good statistics, and independent streams, so every pixel and pass
 // gets its own generator and the image is the same whatever the number of threads.
+// Every number a method draws passes through Rng::uniform, the one place where Metropolis
+// sampling (section 8 (h)) can hand a walker the numbers of its chain's state instead.
+struct PrimaryStream;
+float replayUniform(PrimaryStream& stream);
 struct Rng {
     uint64_t state = 0, inc = 1;
+    PrimaryStream* replay = nullptr;  // mlt: numbers come from this state (and are recorded there)
     uint32_t nextUint() {
         uint64_t old = state;
         state = old * 6364136223846793005ULL + inc;
         uint32_t shifted = uint32_t(((old >> 18u) ^ old) >> 27u), rot = uint32_t(old >> 59u);
         return (shifted >> rot) | (shifted << ((-rot) & 31));
     }
-    float uniform() { return float(nextUint() >> 8) * 0x1p-24f; }  // [0,1), 24 exact bits
+    float uniform() { return replay ? replayUniform(*replay) : float(nextUint() >> 8) * 0x1p-24f; }  // [0,1), 24 exact bits
 };
 inline uint64_t mix64(uint64_t z) {  // SplitMix64 finaliser: decorrelates nearby seeds
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
@@ -1195,11 +1201,12 @@ inline Scene loadScene(const std::string& path) {
 
 // == 8. Integrators ============================================================================
 // Slides "Path sampling techniques" and "Results from different techniques": panels (a) to (f),
-// then (g) "Vertex Connection and Merging (VCM, later)". Every method is one function of the
-// same shape over the shared pieces above, so that a diff of two methods shows how they differ.
+// then (g) "Vertex Connection and Merging (VCM, later)" and (h) "Metropolis-Sampling (see
+// later)". Every method is one function of the same shape over the shared pieces above, so that
+// a diff of two methods shows how they differ.
 // Paths are counted in bounces (scattering vertices): a path of k segments has k-1 bounces, and
 // --maxdepth D keeps paths with at most D bounces.
-enum class Method { PT, NEE, LT, IR, BDPT, VCM };
+enum class Method { PT, NEE, LT, IR, BDPT, VCM, MLT, MMLT };
 // How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
 // Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
 // the depth limit. bdpt's banner says which it uses and why.
@@ -1224,6 +1231,11 @@ struct RenderOptions {
     int strategyMaxLength = 0; // bdpt, vcm: > 0 records per-strategy images up to this path length
     float mergeRadius = -1;    // vcm: r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
     float alpha = 0.75f;       // vcm: r_i = r_0 i^((alpha-1)/2)
+    float largeStep = 0.3f;    // mlt, mmlt: probability of a large step (every number afresh)
+    float sigma = 0.01f;       // mlt, mmlt: a small step's standard deviation, per number
+    int bootstrap = 0;         // mlt, mmlt: samples that estimate b and choose the chains' starts (0: bootstrapSamples)
+    int chains = 256;          // mlt, mmlt: Markov chains, each its own random stream
+    bool fixedStart = false;   // mlt, mmlt: the deliberate mistake, every chain from one state
     // Called after each pass with that pass's image and the non-finite samples dropped so far.
     std::function<void(int pass, const std::vector<Vec3>& passImage, long long nonFinite)> onPass;
 };
@@ -1508,8 +1520,9 @@ inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Ve
     }
 }
 
+// Subpaths of up to --maxdepth bounces, or (mmlt) of exactly `vertices` vertices where they survive.
 inline void cameraSubpath(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, Rng& rng,
-                          std::vector<PathVertex>& path) {
+                          std::vector<PathVertex>& path, int vertices = 0) {
     path.clear();
     PathVertex z0;
     z0.type = PathVertex::Camera;
@@ -1519,7 +1532,7 @@ inline void cameraSubpath(const Scene& scene, const RenderOptions& opt, float fi
     z0.deltaPosition = true;  // never hit (no t = 0 strategy), but connected to: not a delta BSDF
     path.push_back(z0);
     Ray ray = cameraRay(scene.camera, filmX, filmY);
-    randomWalk(scene, opt, ray, Vec3(1), opt.maxDepth + 1, Transport::Radiance, rng, path);
+    randomWalk(scene, opt, ray, Vec3(1), vertices > 0 ? vertices - 1 : opt.maxDepth + 1, Transport::Radiance, rng, path);
 }
 
 // y_0: a point sampled on a light, its throughput Le/p_A (or I/P(light)) and density p_A.
@@ -1534,14 +1547,14 @@ inline PathVertex lightVertex(const LightPoint& lp) {
     return y0;
 }
 
-inline void lightSubpath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<PathVertex>& path) {
+inline void lightSubpath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<PathVertex>& path, int vertices = 0) {
     path.clear();
     EmissionSample es = sampleEmission(scene, rng);
     path.push_back(lightVertex(es.point));
     const PathVertex& y0 = path[0];
     if (isBlack(es.weight)) return;
     Ray ray = es.point.deltaPosition ? Ray{y0.sp.p, es.dir, kInf} : spawnRay(y0.sp, es.dir);
-    randomWalk(scene, opt, ray, es.weight, opt.maxDepth, Transport::Importance, rng, path);
+    randomWalk(scene, opt, ray, es.weight, vertices > 0 ? vertices - 1 : opt.maxDepth, Transport::Importance, rng, path);
 }
 
 // Mirrors and glass cannot be connected to: the direction is fixed by the other vertex.
@@ -1942,16 +1955,23 @@ inline Vec3 connectSubpaths(const Scene& scene, const RenderOptions& opt, Subpat
     return L;
 }
 
-inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, int y, int pass, Rng& rng, RowOutput& out) {
+// One bdpt sample: a camera subpath through (filmX, filmY) in pixel `here`, a light subpath, and
+// all their connections (mlt, section (h), evaluates its states with it).
+inline Vec3 bdptSample(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, int here, Rng& cameraRng,
+                       Rng& lightRng, RowOutput& out) {
     thread_local std::vector<PathVertex> camera, light;
-    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
-    cameraSubpath(scene, opt, filmX, filmY, rng, camera);
-    int here = y * scene.camera.width + x;
-    Rng lightRng = lightPathRng(opt, here, pass);
+    cameraSubpath(scene, opt, filmX, filmY, cameraRng, camera);
     lightSubpath(scene, opt, lightRng, light);
     cacheMisSums(opt.heuristic, camera);
     cacheMisSums(opt.heuristic, light);
     return connectSubpaths(scene, opt, light, camera, here, 0, out);
+}
+
+inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, int y, int pass, Rng& rng, RowOutput& out) {
+    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
+    int here = y * scene.camera.width + x;
+    Rng lightRng = lightPathRng(opt, here, pass);
+    return bdptSample(scene, opt, filmX, filmY, here, rng, lightRng, out);
 }
 
 // -- (g) vcm: "Vertex Connection and Merging (VCM, later)" (Georgiev, Krivanek, Davidovic and
@@ -2256,12 +2276,329 @@ inline Vec3 radianceVCM(const Scene& scene, const RenderOptions& opt, const VcmP
     return vp.mergeEta > 0 ? L + mergeCameraVertices(scene, opt, vp, camera, here, out) : L;
 }
 
+// -- (h) mlt, mmlt: "Metropolis-Sampling [Veach '97] (see later): random variation and mutations
+// of bidirectional paths; very well suited for very complex light paths; unbiased but relatively
+// complex algorithms; uneven convergence". Primary-sample-space MLT (Kelemen, Szirmay-Kalos, Antal
+// and Csonka 2002) over bdpt's own sample. A state u is the list of uniform numbers one bdpt
+// sample draws (section 1: every number passes Rng::uniform), kept in three streams so that a
+// number keeps its meaning when the other subpath changes length: the camera subpath's (the film
+// position first), the light subpath's and (mmlt) the strategy's. The sample's MIS-weighted
+// contributions h_j(u) to pixels j (t = 1 lands anywhere) give the image as an integral over u,
+//     I_j = W H  integral h_j(u) du      (the sample's pixel is one of W H, chosen by u),
+// and Metropolis draws states with density f(u)/b, f = luminance of sum_j h_j(u) (how bright the
+// sample is), b = integral f(u) du, so that
+//     I_j = W H b E_{f/b}[ h_j / f ]:   each of the W H x spp mutations adds b h_j / f / spp.
+// A step proposes v from u with a symmetric T(u->v) = T(v->u) and accepts it with
+//     a(u->v) = min(1, f(v) T(v->u) / (f(u) T(u->v))) = min(1, f(v) / f(u)),
+// which gives detailed balance, f(u) T(u->v) a(u->v) = f(v) T(v->u) a(v->u): states distributed
+// as f/b stay so. Two kinds of steps (Kelemen):
+//   large (probability --large-step): every number afresh, v independent of u: finds new paths;
+//   small: each number moved by a normal of deviation --sigma, wrapped into [0,1): "random
+//   variation and mutations" of a path that carries light, exploring around it.
+// A number a state never drew is drawn afresh when first used (a longer path than before).
+// Expected-value splats (Veach 1997, 11.5): the proposal adds a h(v)/f(v) and the current state
+// (1-a) h(u)/f(u), whichever wins, so a rejected proposal still counts; the current state's
+// share is added once, when it is left.
+// Start-up bias: a chain started anywhere is distributed as f/b only after a while (forever, in
+// a region it cannot leave). A bootstrap of --bootstrap independent samples estimates b (their
+// mean f, zeros included), and each chain starts from one of them chosen in proportion to f,
+// which is distributed as f/b already (--fixed-start, the deliberate mistake: one fixed state).
+// Already, that is, as far as the bootstrap saw every kind of path: a bright family it missed
+// gets no chain until a large step finds it, and its light is short until then. mmlt's
+// bootstrap, one strategy per sample over 33 lengths, needed 10x mlt's: with 6,000 samples per
+// length its image of cornell-glass was 10% dark around the glass ball after 256 mutations per
+// pixel (a region 5.5 standard errors off over 16 seeds); with 60,000 no region was more than
+// 2.1 off (bootstrapSamples).
+// A large step's proposal is an independent uniform state too (Kelemen's estimate of b): each
+// pass pools them into b for the next, so that b's error, which scales the whole image, keeps
+// falling (with the bootstrap's b alone, mlt's error on cornell stopped falling at 2.5% of the
+// mean, its chart's slope -0.11). The price is a bias of order 1/N from the dependence between b
+// and the chains, far below the noise (test `mlt and mmlt agree with the references ...`).
+// --chains chains, each its own random stream: a pass gives each its share of W H mutations,
+// and their splats are added in chain order, so the image does not depend on --threads.
+// mmlt (Hachisuka, Kaplanyan and Dachsbacher 2014; pbrt's MLT): the state also holds a path
+// length k and, by the strategy stream's number, one strategy s of the k+1 that make it; its
+// contribution is (k+1) w_{s,t} C_{s,t} (t = k+1-s): one connection per sample, weighted by bdpt's
+// MIS, so the chain spends its mutations where the strategy that carries the path does. A chain
+// keeps the k it starts with, drawn in proportion to b_k, the integral of f over paths of length k.
+inline float luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// One stream of a state: its numbers, replayed in the order the walk asks for them.
+struct PrimaryStream {
+    std::vector<float> values;
+    size_t used = 0;
+    Rng* fresh = nullptr;  // draws the numbers the state has not used yet
+};
+inline float replayUniform(PrimaryStream& stream) {
+    if (stream.used == stream.values.size()) stream.values.push_back(stream.fresh->uniform());
+    return stream.values[stream.used++];
+}
+
+struct MltState {
+    PrimaryStream camera, light, strategy;
+    int length = 0;                    // mmlt: the path length k (segments); mlt: 0, every length
+    std::vector<Splat> contributions;  // h_j(u)
+    float f = 0;
+};
+
+// mmlt's sample: strategy (s, t = k+1-s) alone, its subpaths exactly s and t vertices long.
+inline Vec3 strategySample(const Scene& scene, const RenderOptions& opt, int k, int s, float filmX, float filmY, int here,
+                           Rng& cameraRng, Rng& lightRng, int& pixel) {
+    thread_local std::vector<PathVertex> camera, light;
+    int t = k + 1 - s;
+    cameraSubpath(scene, opt, filmX, filmY, cameraRng, camera, t);
+    light.clear();
+    if (s > 0) lightSubpath(scene, opt, lightRng, light, s);
+    if (int(camera.size()) != t || int(light.size()) != s) return Vec3(0);  // ended early (roulette, escape)
+    cacheMisSums(opt.heuristic, camera);
+    cacheMisSums(opt.heuristic, light);
+    Connection c;
+    pixel = here;
+    Vec3 C = connectStrategy(scene, light, s, camera, t, c, pixel);
+    if (isBlack(C)) return Vec3(0);
+    return C * misWeight(scene, light, s, camera, t, opt.heuristic, c) * float(k + 1);
+}
+
+// h(u) and f(u) of state u; numbers it has not drawn yet come from the three fresh streams.
+inline void evaluateState(const Scene& scene, const RenderOptions& opt, MltState& u, Rng& cameraFresh, Rng& lightFresh,
+                          Rng& strategyFresh) {
+    Rng cameraRng, lightRng, strategyRng;
+    for (auto [rng, stream, fresh] : {std::make_tuple(&cameraRng, &u.camera, &cameraFresh), std::make_tuple(&lightRng, &u.light, &lightFresh),
+                                      std::make_tuple(&strategyRng, &u.strategy, &strategyFresh)}) {
+        rng->replay = stream;
+        stream->used = 0;
+        stream->fresh = fresh;
+    }
+    const int W = scene.camera.width, H = scene.camera.height;
+    float fx = cameraRng.uniform() * W, fy = cameraRng.uniform() * H;
+    int x = std::min(int(fx), W - 1), y = std::min(int(fy), H - 1), here = y * W + x;
+    float filmX = filmCoordinate(x, fx - x), filmY = filmCoordinate(y, fy - y);
+    u.contributions.clear();
+    if (opt.method == Method::MLT) {
+        thread_local RowOutput out;
+        out.splats.clear();
+        Vec3 L = bdptSample(scene, opt, filmX, filmY, here, cameraRng, lightRng, out);
+        u.contributions.swap(out.splats);
+        u.contributions.push_back({here, L});
+    } else {
+        int s = std::min(int(strategyRng.uniform() * float(u.length + 1)), u.length), pixel = -1;
+        Vec3 C = strategySample(scene, opt, u.length, s, filmX, filmY, here, cameraRng, lightRng, pixel);
+        if (pixel >= 0) u.contributions.push_back({pixel, C});
+    }
+    u.f = 0;
+    for (Splat& h : u.contributions) {
+        if (!isFinite(h.value)) h.value = Vec3(0);  // dropped, as every method drops them
+        u.f += luminance(h.value);
+    }
+}
+
+// f of independent uniform states: the bootstrap's, and every large step's proposal.
+struct FSum {
+    double sum = 0, sumSquares = 0, count = 0;
+    void add(double f) { sum += f, sumSquares += f * f, count += 1; }
+    void add(const FSum& o) { sum += o.sum, sumSquares += o.sumSquares, count += o.count; }
+};
+
+struct MltChain {
+    Rng rng;                   // its steps, acceptances and fresh numbers
+    MltState current, proposal;
+    double currentWeight = 0;  // the current state's expected-value splats not yet added
+    long long accepted = 0, proposed = 0;
+    FSum largeSteps;           // this pass's large-step proposals (for b)
+};
+
+inline float mltAcceptance(float fCurrent, float fProposal) { return fProposal > 0 ? std::min(1.0f, fProposal / fCurrent) : 0.0f; }
+
+// A small step of one number: symmetric in v and the result, wrapped into [0,1), never 1.
+inline float smallStep(float v, float step) {
+    float x = v + step;
+    x -= std::floor(x);
+    return x < 1 ? x : 0;
+}
+// Box-Muller: two independent standard normals from two uniforms (a small step needs one per
+// number; drawing them in pairs halves the cost, a fifth of a mutation's time beside bdpt's).
+inline void standardNormals(Rng& rng, float& a, float& b) {
+    float r = std::sqrt(-2 * std::log(1 - rng.uniform())), phi = 2 * kPi * rng.uniform();
+    a = r * std::cos(phi);
+    b = r * std::sin(phi);
+}
+inline float standardNormal(Rng& rng) {
+    float a, b;
+    standardNormals(rng, a, b);
+    return a;
+}
+
+inline bool proposeStep(const RenderOptions& opt, MltChain& chain) {
+    MltState &v = chain.proposal, &u = chain.current;
+    v.length = u.length;
+    v.camera.values = u.camera.values;
+    v.light.values = u.light.values;
+    v.strategy.values = u.strategy.values;
+    bool large = chain.rng.uniform() < opt.largeStep;
+    if (large) {
+        for (PrimaryStream* stream : {&v.camera, &v.light, &v.strategy}) stream->values.clear();  // afresh, when first used
+        return true;
+    }
+    float normal[2];
+    int left = 0;
+    for (PrimaryStream* stream : {&v.camera, &v.light, &v.strategy})
+        for (float& x : stream->values) {
+            if (left == 0) standardNormals(chain.rng, normal[0], normal[1]), left = 2;
+            x = smallStep(x, opt.sigma * normal[--left]);
+        }
+    return false;
+}
+
+// One Metropolis step of a chain whose current state has f > 0: propose, evaluate, splat the
+// expected values through splat(state, weight), accept with probability a. `accept` is
+// mltAcceptance (a test passes others, to see them fail).
+template <class Evaluate, class SplatState>
+inline void metropolisStep(const RenderOptions& opt, MltChain& chain, const Evaluate& evaluate, const SplatState& splat,
+                           float (*accept)(float, float) = mltAcceptance) {
+    bool large = proposeStep(opt, chain);
+    evaluate(chain.proposal);
+    if (large) chain.largeSteps.add(chain.proposal.f);
+    float a = accept(chain.current.f, chain.proposal.f);
+    if (a > 0) splat(chain.proposal, double(a) / chain.proposal.f);
+    chain.currentWeight += double(1 - a) / chain.current.f;
+    ++chain.proposed;
+    if (chain.rng.uniform() < a) {
+        splat(chain.current, chain.currentWeight);
+        chain.currentWeight = 0;
+        std::swap(chain.current, chain.proposal);
+        ++chain.accepted;
+    }
+}
+
+// What mlt keeps from pass to pass.
+struct MltPass {
+    double b = 0, bStandardError = 0;  // the estimate of b = integral f(u) du this pass uses
+    std::vector<FSum> fByLength;       // f of independent states, per path length (mlt: one)
+    std::vector<MltChain> chains;
+    std::vector<std::vector<Splat>> chainSplats;  // this pass's, per chain
+    std::vector<Vec3> image;                      // this pass's: b sum h/f over W H mutations
+    long long accepted() const {
+        long long n = 0;
+        for (const MltChain& c : chains) n += c.accepted;
+        return n;
+    }
+    long long proposed() const {
+        long long n = 0;
+        for (const MltChain& c : chains) n += c.proposed;
+        return n;
+    }
+};
+
+// The bootstrap's size: mmlt's samples are single strategies, each noisier than bdpt's whole
+// sample and a few times cheaper, and it spreads them over maxdepth+1 path lengths: ten times
+// mlt's (fewer left the start-up bias below visible on cornell-glass at 256 mutations per pixel).
+inline int bootstrapSamples(const RenderOptions& opt) {
+    return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::MMLT ? 1000000 : 100000;
+}
+
+inline Rng bootstrapRng(const RenderOptions& opt, int sample, int stream) {
+    return makeRng(opt.seed ^ 0x2545f4914f6cdd1dULL, uint64_t(sample), uint64_t(stream));
+}
+
+// Bootstrap sample i (mmlt: of length 1 + i mod (maxdepth+1)) into u, from its own streams.
+inline void bootstrapSample(const Scene& scene, const RenderOptions& opt, int i, MltState& u) {
+    Rng camera = bootstrapRng(opt, i, 0), light = bootstrapRng(opt, i, 1), strategy = bootstrapRng(opt, i, 2);
+    u.camera.values.clear();
+    u.light.values.clear();
+    u.strategy.values.clear();
+    u.length = opt.method == Method::MMLT ? 1 + i % (opt.maxDepth + 1) : 0;
+    evaluateState(scene, opt, u, camera, light, strategy);
+}
+
+// b = sum over lengths k of the mean f of length k's independent samples (mlt: one length),
+// and its standard error.
+inline void estimateB(MltPass& mp) {
+    double b = 0, variance = 0;
+    for (const FSum& s : mp.fByLength) {
+        if (s.count == 0) continue;
+        double mean = s.sum / s.count;
+        b += mean;
+        variance += std::max(0.0, s.sumSquares / s.count - mean * mean) / std::max(1.0, s.count - 1);
+    }
+    mp.b = b;
+    mp.bStandardError = std::sqrt(variance);
+}
+
+// b from --bootstrap samples (mmlt: spread evenly over the lengths), and each chain's start: a
+// bootstrap sample drawn in proportion to its f.
+inline void startChains(const Scene& scene, const RenderOptions& opt, int threads, MltPass& mp, RayCount& rays) {
+    const int n = bootstrapSamples(opt), lengths = opt.method == Method::MMLT ? opt.maxDepth + 1 : 1;
+    std::vector<double> f(n);
+    RayCount traced = parallelRows(n, threads, [&](int i, bool) {
+        thread_local MltState u;
+        bootstrapSample(scene, opt, i, u);
+        f[i] = u.f;
+    });
+    rays.closest += traced.closest;
+    rays.shadow += traced.shadow;
+    mp.fByLength.assign(lengths, FSum());
+    for (int i = 0; i < n; ++i) mp.fByLength[i % lengths].add(f[i]);
+    estimateB(mp);
+    std::vector<double> count(lengths);
+    for (int k = 0; k < lengths; ++k) count[k] = mp.fByLength[k].count;
+    mp.chains.assign(std::max(1, opt.chains), MltChain());
+    mp.chainSplats.assign(mp.chains.size(), {});
+    if (!(mp.b > 0)) return;  // no sample found light: the image stays black
+    // Each length's samples weigh by 1/count of that length, so that the choice is f / (n_k b).
+    std::vector<double> cdf(n);
+    double total = 0;
+    for (int i = 0; i < n; ++i) cdf[i] = total += f[i] / count[i % lengths];
+    int firstLit = int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
+    for (size_t c = 0; c < mp.chains.size(); ++c) {
+        MltChain& chain = mp.chains[c];
+        chain.rng = makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(c), 0);
+        double pick = double(chain.rng.uniform()) * total;
+        int i = opt.fixedStart ? firstLit : int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin());
+        i = std::min(i, n - 1);
+        while (f[i] == 0) --i;  // pick fell on the edge of a zero: the sample before holds it
+        bootstrapSample(scene, opt, i, chain.current);
+    }
+}
+
+// One pass: W H mutations shared among the chains (one per pixel on average), their splats
+// added in chain order into mp.image.
+inline void traceMltPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, MltPass& mp, RayCount& rays) {
+    const long long N = (long long)scene.camera.width * scene.camera.height;
+    if (pass == 0) startChains(scene, opt, threads, mp, rays);
+    mp.image.assign(size_t(N), Vec3(0));
+    if (!(mp.b > 0)) return;
+    const long long C = (long long)mp.chains.size();
+    RayCount traced = parallelRows(int(C), threads, [&](int c, bool) {
+        MltChain& chain = mp.chains[c];
+        std::vector<Splat>& out = mp.chainSplats[c];
+        out.clear();
+        auto splat = [&](const MltState& u, double weight) {
+            for (const Splat& h : u.contributions)
+                if (!isBlack(h.value)) out.push_back({h.pixel, h.value * float(weight * mp.b)});
+        };
+        auto evaluate = [&](MltState& u) { evaluateState(scene, opt, u, chain.rng, chain.rng, chain.rng); };
+        for (long long i = 0, n = N / C + (c < N % C); i < n; ++i) metropolisStep(opt, chain, evaluate, splat);
+        splat(chain.current, chain.currentWeight);
+        chain.currentWeight = 0;
+    });
+    rays.closest += traced.closest;
+    rays.shadow += traced.shadow;
+    for (const std::vector<Splat>& splats : mp.chainSplats)
+        for (const Splat& s : splats) mp.image[s.pixel] += s.value;
+    for (MltChain& chain : mp.chains) {  // the next pass's b, with this pass's large steps
+        mp.fByLength[opt.method == Method::MMLT ? chain.current.length - 1 : 0].add(chain.largeSteps);
+        chain.largeSteps = FSum();
+    }
+    estimateB(mp);
+}
+
 // What every method shares for one pass, computed before the pixels (ir's VPLs, vcm's light
-// subpaths and grid).
+// subpaths and grid, mlt's chains).
 struct PassData {
     int pass = 0;
     std::vector<Vpl> vpls;
     VcmPass vcm;
+    MltPass mlt;
     RayCount rays;  // traced for them
 };
 
@@ -2270,6 +2607,7 @@ inline void preparePass(const Scene& scene, const RenderOptions& opt, int pass, 
     data.rays = RayCount();
     if (opt.method == Method::IR) data.rays = parallelRows(1, 1, [&](int, bool) { data.vpls = traceVpls(scene, opt, pass); });
     if (opt.method == Method::VCM) traceVcmLightPass(scene, opt, pass, threads, data.vcm, data.rays);
+    if (opt.method == Method::MLT || opt.method == Method::MMLT) traceMltPass(scene, opt, pass, threads, data.mlt, data.rays);
 }
 
 // One sample of pixel (x, y): what a camera path brings back; light paths add splats instead.
@@ -2279,6 +2617,7 @@ inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, const Pass
         case Method::LT: traceLightPath(scene, opt, rng, out.splats); return Vec3(0);  // this pixel's stream: one light path
         case Method::BDPT: return radianceBDPT(scene, opt, x, y, pass.pass, rng, out);
         case Method::VCM: return radianceVCM(scene, opt, pass.vcm, x, y, rng, out);
+        case Method::MLT: case Method::MMLT: return pass.mlt.image[size_t(y) * scene.camera.width + x];  // the chains' pass
         default: break;
     }
     float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
@@ -2324,6 +2663,8 @@ struct RenderResult {
     RayCount rays;                  // all threads, all passes (ir's VPL paths included)
     size_t lightVertexBytes = 0;    // vcm: the most one pass's light subpaths and grid took
     long long mergeableVertices = 0;  // vcm: in the grid, summed over passes
+    double mltB = 0, mltBError = 0;   // mlt, mmlt: the bootstrap's b and its standard error
+    long long mltAccepted = 0, mltProposed = 0;
 };
 
 struct ProgressBar {
@@ -2443,6 +2784,10 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
         result.passes = p + 1;
     }
     result.seconds = secondsSince(t0);
+    result.mltB = passData.mlt.b;
+    result.mltBError = passData.mlt.bStandardError;
+    result.mltAccepted = passData.mlt.accepted();
+    result.mltProposed = passData.mlt.proposed();
     result.clampRemoved = energyUnclamped > 0 ? 1 - energyClamped / energyUnclamped : 0;
     bar.show(1, result.passes, 0);
     result.image = result.variance = Image(W, H);
@@ -2725,6 +3070,8 @@ inline const char* methodName(Method m) {
         case Method::IR: return "ir";
         case Method::BDPT: return "bdpt";
         case Method::VCM: return "vcm";
+        case Method::MLT: return "mlt";
+        case Method::MMLT: return "mmlt";
     }
     return "?";
 }
@@ -2738,6 +3085,7 @@ inline std::string optionsLabel(const RenderOptions& o) {  // what distinguishes
         s << "--heuristic " << h[int(o.heuristic)] << " ";
     }
     if (o.method == Method::VCM) s << "--alpha " << o.alpha << " ";
+    if ((o.method == Method::MLT || o.method == Method::MMLT) && o.fixedStart) s << "--fixed-start ";
     if (o.maxDepth != 32) s << "--maxdepth " << o.maxDepth;
     std::string r = s.str();
     while (!r.empty() && r.back() == ' ') r.pop_back();
@@ -2798,11 +3146,17 @@ Method
                     ir   (d) instant radiosity: camera paths gather virtual point lights
                     bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)
                     vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)
+                    mlt  (see later) Metropolis light transport: Markov chains that mutate the
+                         random numbers of bdpt's whole sample (Kelemen's primary sample space);
+                         --spp N means N mutations per pixel on average
+                    mmlt (see later) multiplexed MLT (pbrt's): the state also picks one path
+                         length and one strategy (s,t), weighted by bdpt's MIS
   --mis             nee: weight light and BSDF sampling with the power heuristic
   --vpls N          ir: light paths traced per pass, each leaving VPLs (default 16)
   --clamp C         ir: bound the geometry term G by C (panel (e)); prints the energy removed
-  --heuristic H     bdpt, vcm: MIS weights balance (default), power, max (the slides' maximum
-                    heuristic) or uniform (1 / number of strategies able to make the path)
+  --heuristic H     bdpt, vcm, mlt, mmlt: MIS weights balance (default), power, max (the
+                    slides' maximum heuristic) or uniform (1 / number of strategies able to
+                    make the path)
   --radius R        vcm: merging radius r_0 of the first pass (default: one pixel's footprint
                     where the central camera ray meets the scene); 0: no merging, as bdpt
   --alpha A         vcm: radius schedule r_i = r_0 i^((A-1)/2), 0 < A <= 1 (default 0.75)
@@ -2811,10 +3165,18 @@ Method
                     and two pyramid montages, into DIR (each pyramid row brightened by the
                     stops printed in its tiles)
   --strategy-length K  longest path (segments) with per-strategy images (default 5)
+  --large-step P    mlt, mmlt: probability of a large step, every number drawn afresh (0.3)
+  --sigma S         mlt, mmlt: a small step moves each number by a normal of deviation S,
+                    wrapped into [0,1) (default 0.01)
+  --bootstrap N     mlt, mmlt: independent samples that estimate the image's normalisation b
+                    and choose the chains' starts in proportion to their brightness (default
+                    100000; mmlt 1000000, spread over the path lengths)
+  --chains N        mlt, mmlt: Markov chains, each its own random stream (default 256)
   --maxdepth D      at most D bounces (scattering vertices) per path (default 32)
-  --roulette R      lt, ir, bdpt, vcm: how subpaths end: throughput (q from the throughput after
-                    --rr-start bounces, as pt and nee), albedo (q = the material's albedo at every
-                    vertex, counted in bdpt's MIS densities) or off (only --maxdepth)
+  --roulette R      lt, ir, bdpt, vcm, mlt, mmlt: how subpaths end: throughput (q from the
+                    throughput after --rr-start bounces, as pt and nee), albedo (q = the
+                    material's albedo at every vertex, counted in bdpt's MIS densities) or off
+                    (only --maxdepth)
   --rr-start N      pt, nee (and --roulette throughput): Russian roulette from bounce N on
                     (default 3); N > --maxdepth turns it off (lecture notes, page 9)
 Deliberate mistakes (slides: "Non-symmetric scattering")
@@ -2823,8 +3185,11 @@ Deliberate mistakes (slides: "Non-symmetric scattering")
   --no-adjoint-correction  light paths use the shading-normal BSDF unchanged (not its adjoint)
   --fixed-ray-offset       push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)
                     instead of the hit point's error bound (see tests/thin-gap.scene)
-  --delta-density-one      bdpt, vcm: after a mirror or glass, store the MIS densities as 1
-                    (pbrt's convention) instead of the true ones: caustics go to the noisy s = 0
+  --delta-density-one      bdpt, vcm, mlt, mmlt: after a mirror or glass, store the MIS densities
+                    as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy s = 0
+  --fixed-start     mlt, mmlt: every chain starts from one fixed state (the first bootstrap
+                    sample that carries light) instead of one chosen in proportion to its
+                    brightness: start-up bias, visible at short runs
 Sampling
   --spp N           N passes of one sample per pixel (default 16)
   --time SECONDS    render passes until SECONDS have passed (replaces --spp)
@@ -2835,6 +3200,9 @@ Output
   --res WxH         override the scene's resolution (e.g. --res 128x128)
   --exposure STOPS  scale the PNG by 2^STOPS (the PFM stays linear)
   --quiet           no progress bar and no summary line
+  --live SECONDS    while rendering, rewrite the PNG from the passes so far at most every
+                    SECONDS (whole, by rename): an image viewer that reloads it shows the image
+                    converging (on a projector, say); --log is written as the passes finish
   --help            this text
 Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;
 a second Ctrl-C (a second or more after the first) abandons the render: no file, status 3.
@@ -2843,7 +3211,8 @@ Speed against accuracy
                     the relative bias of the mean and the firefly measure against it
   --log FILE.csv    one row per pass: scene, method, options, pass, spp, seconds, rmse, relmse,
                     mean, bias, firefly, nan_count, rmse_without_lamp (the lamp's pixels and their
-                    neighbours left out); error columns empty without --ref
+                    neighbours left out); error columns empty without --ref; written as the
+                    passes finish, flushed after each (tail -f follows the run)
   --compare A.pfm B.pfm  print rmse, relmse and bias of A against B (e.g. two seeds of a reference)
   --average A.pfm B.pfm  write the mean of A and B to --out (required; and its PFM): a reference
                     from two seeds
@@ -2892,6 +3261,7 @@ struct CommandLine {
     bool help = false, symmetricRefraction = false, noAdjointCorrection = false, fixedRayOffset = false, deltaDensityOne = false;
     int strategyLength = 5;
     double radius = -1;          // vcm --radius; < 0: not given
+    double liveSeconds = 0;      // --live: rewrite the PNG at most this often while rendering
     std::string strategiesDir, refPath, logPath;
     std::vector<std::string> failureLogs;
     std::string pfmA, pfmB;  // --compare, --average or --ratio: the two images
@@ -2940,7 +3310,9 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             else if (m == "ir") cl.opt.method = Method::IR;
             else if (m == "bdpt") cl.opt.method = Method::BDPT;
             else if (m == "vcm") cl.opt.method = Method::VCM;
-            else fail("unknown method '" + printable(m) + "' (pt, nee, lt, ir, bdpt, vcm)");
+            else if (m == "mlt") cl.opt.method = Method::MLT;
+            else if (m == "mmlt") cl.opt.method = Method::MMLT;
+            else fail("unknown method '" + printable(m) + "' (pt, nee, lt, ir, bdpt, vcm, mlt, mmlt)");
         } else if (a == "--heuristic") {
             std::string h = value(i);
             if (h == "balance") cl.opt.heuristic = Heuristic::Balance;
@@ -2966,6 +3338,12 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
         else if (a == "--no-adjoint-correction") cl.noAdjointCorrection = true;
         else if (a == "--fixed-ray-offset") cl.fixedRayOffset = true;
         else if (a == "--delta-density-one") cl.deltaDensityOne = true;
+        else if (a == "--large-step") cl.opt.largeStep = float(number(i, 0, 1));
+        else if (a == "--sigma") cl.opt.sigma = float(number(i, 1e-6, 10));
+        else if (a == "--bootstrap") cl.opt.bootstrap = int(integer(i, 1, 1e8));
+        else if (a == "--chains") cl.opt.chains = int(integer(i, 1, 1e6));
+        else if (a == "--fixed-start") cl.opt.fixedStart = true;
+        else if (a == "--live") cl.liveSeconds = number(i, 1e-3, 1e6);
         else if (a == "--maxdepth") cl.opt.maxDepth = int(integer(i, 0, 10000));
         else if (a == "--rr-start") cl.opt.rrStart = int(integer(i, 0, 10001));
         else if (a == "--spp") cl.opt.spp = int(integer(i, 1, 1e8));
@@ -3013,17 +3391,19 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             fail(std::string(option) + " applies to " + whose + ", not to --method " + methodName(cl.opt.method));
     };
     onlyFor("--mis", {Method::NEE}, "--method nee");
-    onlyFor("--heuristic", {Method::BDPT, Method::VCM}, "--method bdpt and vcm");
+    onlyFor("--heuristic", {Method::BDPT, Method::VCM, Method::MLT, Method::MMLT}, "--method bdpt, vcm, mlt and mmlt");
     onlyFor("--strategies", {Method::BDPT, Method::VCM}, "--method bdpt and vcm");
     onlyFor("--strategy-length", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)");
     onlyFor("--radius", {Method::VCM}, "--method vcm");
-    onlyFor("--delta-density-one", {Method::BDPT, Method::VCM}, "--method bdpt and vcm");
+    onlyFor("--delta-density-one", {Method::BDPT, Method::VCM, Method::MLT, Method::MMLT}, "--method bdpt, vcm, mlt and mmlt");
+    for (const char* o : {"--large-step", "--sigma", "--bootstrap", "--chains", "--fixed-start"})
+        onlyFor(o, {Method::MLT, Method::MMLT}, "--method mlt and mmlt");
     onlyFor("--alpha", {Method::VCM}, "--method vcm");
     onlyFor("--vpls", {Method::IR}, "--method ir");
     onlyFor("--clamp", {Method::IR}, "--method ir");
-    onlyFor("--roulette", {Method::LT, Method::IR, Method::BDPT, Method::VCM}, "the methods that trace light paths (lt, ir, bdpt, vcm)");
-    onlyFor("--no-adjoint-correction", {Method::LT, Method::IR, Method::BDPT, Method::VCM},
-            "the methods that trace light paths (lt, ir, bdpt, vcm)");
+    const std::initializer_list<Method> lightPathMethods = {Method::LT, Method::IR, Method::BDPT, Method::VCM, Method::MLT, Method::MMLT};
+    onlyFor("--roulette", lightPathMethods, "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, mmlt)");
+    onlyFor("--no-adjoint-correction", lightPathMethods, "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, mmlt)");
     if (given.count("--strategy-length") && cl.strategiesDir.empty()) fail("--strategy-length applies with --strategies DIR");
     // Only the throughput rule has a start: the albedo rule acts from the first bounce on.
     bool throughputRoulette = cl.opt.method == Method::PT || cl.opt.method == Method::NEE || cl.opt.roulette == Roulette::Throughput;
@@ -3111,16 +3491,24 @@ inline std::string checkOutputs(const CommandLine& cl, const std::string& pfm) {
 
 // Mistakes in a scene that still renders, but not as its author meant: said before the work.
 //  - one light takes nearly all of the choice by power (a huge dim sky sphere starves a lamp);
+//  - a light whose emitting side faces a surface right in front of it, or nothing at all (a
+//    lamp under a ceiling with its u and v swapped: it lights a sliver of ceiling, and the room
+//    renders almost black, mean 0.00068, without a word before this check);
 //  - a quick preview sees no light at all (a lamp facing away, or a light in a closed box).
 // What a render will hold, in bytes, known before it starts: per pixel the pass sums and squares
 // (6 doubles), the pass, the image and its variance (3 Vec3), the PNG's bytes, the log's running
 // mean, two sums per strategy image and the image written; vcm's light subpaths and grid of a
 // pass, estimated at 2 KB a pixel (its summary line measured 0.7 KB on cornell and 1.4 KB on
-// sds-point, at 256x256 and 1024x1024; a 6 GB limit stopped it at 2048x2048 on cornell).
+// sds-point, at 256x256 and 1024x1024; a 6 GB limit stopped it at 2048x2048 on cornell); mlt's
+// pass image and its chains' splats of one pass, estimated at 128 bytes a pixel (its peak memory
+// grew by 55 bytes a pixel more than bdpt's from 128x128 to 512x512 on cornell); its chains'
+// states do not grow with the image (about 1.2 KB a chain on cornell).
 inline double estimatedBytes(const Scene& scene, const RenderOptions& opt, bool logging) {
     int images = strategyImageCount(opt);
+    bool metropolis = opt.method == Method::MLT || opt.method == Method::MMLT;
     double perPixel = 6 * sizeof(double) + 3 * sizeof(Vec3) + 3 + (logging ? 3 * sizeof(double) + sizeof(Vec3) : 0) +
-                      images * (2 * 3 * sizeof(double) + sizeof(Vec3) + 3) + (opt.method == Method::VCM ? 2048 : 0);
+                      images * (2 * 3 * sizeof(double) + sizeof(Vec3) + 3) + (opt.method == Method::VCM ? 2048 : 0) +
+                      (metropolis ? 128 : 0);
     return perPixel * scene.camera.width * scene.camera.height;
 }
 
@@ -3141,6 +3529,36 @@ inline void warnAboutScene(const Scene& scene, const RenderOptions& opt, std::os
             err << scene.file << ":" << scene.lights[i].line << ": warning: this light takes " << percent
                 << "% of the light choice (by power): the others are almost never sampled, and where they matter nee, lt "
                    "and bdpt will be noisy\n";
+    }
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = scene.lights[i];
+        if (light.type != Light::Area) continue;
+        // Its light, sampled as light paths leave it, from its emitting side and, as if turned
+        // around, from the other: the share that reaches a surface farther than a twentieth of
+        // the lamp's size (closer: the ceiling it hangs under). A lamp that lights little on its
+        // side and much on the other was meant the other way round; a lamp that lights nothing
+        // either way (a sky, a lamp over an open floor) is left alone.
+        const float near = 0.05f * std::sqrt(scene.shapes[light.shape].area);
+        const int rays = 256;
+        int lit[2] = {0, 0};
+        float nearest = kInf;
+        Rng rng = makeRng(0x1a4e, i, 0);
+        for (int r = 0; r < rays; ++r) {
+            float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
+            SurfacePoint sp = sampleShapePoint(scene, light.shape, u1, u2);
+            for (int side = 0; side < 2; ++side) {
+                Vec3 n = side == 0 ? sp.ng : -sp.ng;
+                Hit hit = intersect(scene, spawnRay(sp, Frame(n).toWorld(sampleCosineHemisphere(u3, u4))));
+                lit[side] += hit.found() && hit.t >= near;
+                if (side == 0 && hit.found() && hit.t < near) nearest = std::min(nearest, hit.t);
+            }
+        }
+        if (!(lit[0] < rays / 10 && lit[1] > rays / 2)) continue;
+        char text[64];
+        std::snprintf(text, sizeof text, "a surface %.3g away", double(nearest));
+        err << scene.file << ":" << light.line << ": warning: this light's emitting side (u x v for a quad) faces "
+            << (nearest < kInf ? text : "nothing") << ": " << 100 * lit[0] / rays << "% of its light gets farther, "
+            << 100 * lit[1] / rays << "% would from its other side; to turn it around, swap its u and v\n";
     }
     Scene preview = scene;
     setResolution(preview.camera, 32, 32);
@@ -3231,21 +3649,34 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         }
     }
     // Per-pass metrics: the running mean against the reference, with the time spent measuring
-    // taken out of the clock.
-    std::ostringstream log;
-    log << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count,rmse_without_lamp\n";
+    // taken out of the clock. The log is written as the passes finish, flushed after each (tail -f
+    // follows a run); --live rewrites the PNG from the running mean (whole, by rename).
+    std::ofstream log;
+    if (!cl.logPath.empty()) {
+        log.open(cl.logPath);
+        log << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count,rmse_without_lamp\n";
+        if (!log.flush()) { err << "bdpt: cannot write " << cl.logPath << " (nothing rendered)\n"; return 1; }
+    }
     std::vector<double> running(3 * size_t(scene.camera.width) * scene.camera.height, 0.0);
-    auto start = std::chrono::steady_clock::now();
+    auto start = std::chrono::steady_clock::now(), lastLive = start;
     double measuring = 0;
     std::string sceneName = cl.scenePath.substr(cl.scenePath.find_last_of('/') + 1);
     sceneName = sceneName.substr(0, sceneName.find_last_of('.'));
-    if (!cl.logPath.empty()) {
+    if (!cl.logPath.empty() || cl.liveSeconds > 0) {
         cl.opt.onPass = [&](int p, const std::vector<Vec3>& pass, long long nonFinite) {
             double seconds = secondsSince(start) - measuring;
             auto t0 = std::chrono::steady_clock::now();
             Image mean(scene.camera.width, scene.camera.height);
             for (size_t i = 0; i < pass.size(); ++i)
                 for (int c = 0; c < 3; ++c) mean.pixels[i][c] = float((running[3 * i + c] += pass[i][c]) / (p + 1));
+            if (cl.liveSeconds > 0 && secondsSince(lastLive) >= cl.liveSeconds) {
+                writePNG(mean, cl.out, cl.opt.exposure);  // a failure here shows again at the end
+                lastLive = std::chrono::steady_clock::now();
+            }
+            if (cl.logPath.empty()) {
+                measuring += secondsSince(t0);
+                return;
+            }
             log << sceneName << "," << methodName(cl.opt.method) << "," << optionsLabel(cl.opt) << "," << p + 1 << "," << p + 1 << ","
                 << seconds << ",";
             if (ref.width > 0) {
@@ -3255,16 +3686,14 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
             } else {
                 log << ",," << imageMean(mean) << ",,," << nonFinite << ",\n";
             }
+            log.flush();
             measuring += secondsSince(t0);
         };
     }
     RenderResult r = render(scene, cl.opt);
     if (!cl.logPath.empty()) {
-        std::string tmp = tempName(cl.logPath);
-        std::ofstream f(tmp);
-        f << log.str();
-        f.close();
-        if (!commitFile(tmp, cl.logPath, bool(f))) { err << "bdpt: cannot write " << cl.logPath << "\n"; return 1; }
+        log.close();
+        if (!log) { err << "bdpt: cannot write " << cl.logPath << "\n"; return 1; }
     }
     if (!writePNG(r.image, cl.out, cl.opt.exposure) || !writePFM(r.image, pfm)) {
         err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
@@ -3287,6 +3716,13 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         std::snprintf(text, sizeof text, "vcm: radius %g in pass 1, %g in pass %d; %.1f mergeable light vertices per pixel and pass; "
                       "light subpaths and grid %.1f MB\n", mergeRadius(scene, cl.opt, 0), mergeRadius(scene, cl.opt, r.passes - 1), r.passes,
                       double(r.mergeableVertices) / (double(r.passes) * r.image.width * r.image.height), r.lightVertexBytes / 1e6);
+        out << text;
+    }
+    if (!cl.opt.quiet && (cl.opt.method == Method::MLT || cl.opt.method == Method::MMLT)) {
+        char text[256];
+        std::snprintf(text, sizeof text, "%s: b = %.6g +- %.2g (bootstrap of %d samples); %d chains accepted %.1f%% of %lld mutations\n",
+                      methodName(cl.opt.method), r.mltB, r.mltBError, bootstrapSamples(cl.opt), cl.opt.chains,
+                      100.0 * double(r.mltAccepted) / double(std::max(1LL, r.mltProposed)), r.mltProposed);
         out << text;
     }
     if (!cl.opt.quiet && cl.opt.method == Method::IR && cl.opt.clamp > 0)

@@ -17,6 +17,23 @@ inline double threadCpuSeconds() {
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+// scenes/NAME.scene at the resolution of its reference scenes/refs/NAME.pfm (make efficiency,
+// make uneven); false, with the reason on stderr, if either cannot be read.
+inline bool sceneWithReference(const std::string& name, Scene& scene, Image& ref) {
+    try {
+        scene = loadScene("scenes/" + name + ".scene");
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return false;
+    }
+    if (!readPFM("scenes/refs/" + name + ".pfm", ref)) {
+        std::fprintf(stderr, "scenes/refs/%s.pfm: no reference (make refs)\n", name.c_str());
+        return false;
+    }
+    setResolution(scene.camera, ref.width, ref.height);
+    return true;
+}
+
 inline double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);

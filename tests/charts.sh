@@ -6,7 +6,8 @@
 #   tests/charts.sh panels    the six panels at 40 paths per pixel into build/panels/ (make panels)
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time,
 #                             the thin-gap figure, sds-point by pt, bdpt and vcm (sds-vcm.png), the
-#                             combination-of-estimators example and the furnace's series
+#                             combination-of-estimators example, the furnace's series and the door's
+#                             uneven convergence (metropolis)
 #   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
 #   tests/charts.sh plots     the charts again from the logs of the last charts run (no rendering)
 #   tests/charts.sh tables    the failure table and the reference check from the runs' logs
@@ -16,8 +17,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
 REF_SECONDS=${REF_SECONDS:-90}    # per reference seed: far more than a run, so its noise is far below
-RUN_SECONDS=${RUN_SECONDS:-4}     # per method and scene (90 runs: 6 minutes)
-ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refraction shading-normals sds sds-point sds-ior1"
+RUN_SECONDS=${RUN_SECONDS:-4}     # per method and scene (156 runs: 11 minutes)
+ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refraction shading-normals sds sds-point sds-ior1 door"
 SCENES=${SCENES:-$ALL_SCENES}
 FIG=lecture_notes/figures
 RECORD=lecture_notes/appendix-a-speed-and-accuracy.md  # where the generated tables go
@@ -28,7 +29,8 @@ clampFor() {  # G is in the scene's units: a clamp that removes a visible share 
   case $1 in cornell*|indirect|shading-normals) echo 1e-5 ;; furnace) echo 0.1 ;; refraction) echo 0.05 ;; *) echo 0.2 ;; esac
 }
 # One colour per method and one dash pattern per variant, the same in every chart (colour-blind
-# safe: Okabe-Ito): pt black, nee blue, lt sky blue, ir purple, bdpt vermilion, vcm bluish green
+# safe: Okabe-Ito): pt black, nee blue, lt sky blue, ir purple, bdpt vermilion, vcm bluish green,
+# mlt dark gold
 # (lt was orange, too close to bdpt's vermilion to tell apart).
 lineStyle() {
   case $1 in
@@ -38,6 +40,7 @@ lineStyle() {
     bdpt-balance) echo "lc rgb '#d55e00' dt 1" ;; bdpt-power) echo "lc rgb '#d55e00' dt 2" ;;
     bdpt-max) echo "lc rgb '#d55e00' dt 3" ;;    bdpt-uniform) echo "lc rgb '#d55e00' dt 4" ;;
     vcm) echo "lc rgb '#009e73' dt 1" ;;
+    mlt) echo "lc rgb '#8c6d00' dt 1" ;;         mmlt) echo "lc rgb '#8c6d00' dt 2" ;;
     *) echo "lc rgb '#999999' dt 1" ;;
   esac
 }
@@ -46,19 +49,19 @@ styles() {  # every method's chart style: tests/test_notes.cpp checks that no tw
   methods cornell | while IFS='|' read -r label opts; do echo "$label $(lineStyle "$label")"; done
 }
 
-# The eleven runs of every scene: label|options
+# The thirteen runs of every scene: label|options
 methods() {
   printf '%s\n' "pt|--method pt" "nee|--method nee" "nee-mis|--method nee --mis" "lt|--method lt" "ir|--method ir" \
     "ir-clamp|--method ir --clamp $(clampFor "$1")" "bdpt-balance|--method bdpt --heuristic balance" \
     "bdpt-power|--method bdpt --heuristic power" "bdpt-max|--method bdpt --heuristic max" \
-    "bdpt-uniform|--method bdpt --heuristic uniform" "vcm|--method vcm"
+    "bdpt-uniform|--method bdpt --heuristic uniform" "vcm|--method vcm" "mlt|--method mlt" "mmlt|--method mmlt"
 }
 
 # The method that converges fastest on each scene at the chart resolution (measured: its two seeds
 # differ least after equal time), so the reference beats every charted run by the widest margin.
 refMethod() {
   case $1 in
-    cornell|indirect|shading-normals) echo lt ;;  # diffuse and glossy: one light path lands on many pixels
+    cornell|indirect|shading-normals|door) echo lt ;;  # diffuse and glossy: one light path lands on many pixels
     cornell-glass) echo nee ;;
     refraction|sds) echo pt ;;                    # light arrives through glass: eye paths hit the sky/lamp
     sds-point) echo vcm ;;                        # only merging reaches L S D S E
@@ -246,6 +249,19 @@ figures() {
   sds
   estimators
   furnaceseries
+  metropolis
+}
+
+# Page 16's uneven convergence: bdpt, mlt and mmlt on the door at equal time, per region
+# (tests/uneven.cpp): its figure into $FIG, its table spliced into the page.
+metropolis() {
+  make -s build/uneven
+  ./build/uneven --out "$FIG" | sed -n '/^|/p' > "$FIG/uneven-door.md"
+  awk -v table="$FIG/uneven-door.md" '
+    /<!-- uneven:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
+    /<!-- uneven:end -->/ { skip = 0 }
+    !skip' lecture_notes/16-metropolis-sampling.md > build/page16.tmp && mv build/page16.tmp lecture_notes/16-metropolis-sampling.md
+  echo "figure $FIG/uneven-door.png and table $FIG/uneven-door.md (and page 16)"
 }
 
 # Page 10's "Combination of Estimators: Example": four paths of k = 2 segments on cornell, each

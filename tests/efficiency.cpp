@@ -41,6 +41,8 @@ static std::vector<Variant> variants(bool alternatives) {
         {"bdpt --heuristic max", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Max; })},
         {"bdpt --heuristic uniform", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Uniform; })},
         {"vcm", with(Method::VCM)},
+        {"mlt", with(Method::MLT)},
+        {"mmlt", with(Method::MMLT)},
     };
     if (alternatives) {
         v.push_back({"bdpt --roulette throughput", with(Method::BDPT, [](RenderOptions& o) { o.roulette = Roulette::Throughput; })});
@@ -91,7 +93,7 @@ int main(int argc, char** argv) {
     int spp = 256, seeds = 4;
     bool alternatives = false;
     std::string only;
-    std::vector<std::string> scenes = {"cornell", "cornell-glass", "indirect", "glass-box", "sds-ior1"};
+    std::vector<std::string> scenes = {"cornell", "cornell-glass", "indirect", "glass-box", "sds-ior1", "door"};
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--spp" && i + 1 < argc) spp = std::atoi(argv[++i]);
@@ -117,17 +119,7 @@ int main(int argc, char** argv) {
     for (const std::string& name : scenes) {
         Scene scene;
         Image ref;
-        try {
-            scene = loadScene("scenes/" + name + ".scene");
-        } catch (const InputError& e) {
-            std::fprintf(stderr, "%s\n", e.what());
-            return 2;
-        }
-        if (!readPFM("scenes/refs/" + name + ".pfm", ref)) {
-            std::fprintf(stderr, "scenes/refs/%s.pfm: no reference (make refs)\n", name.c_str());
-            return 2;
-        }
-        setResolution(scene.camera, ref.width, ref.height);
+        if (!sceneWithReference(name, scene, ref)) return 2;
         std::vector<std::vector<double>> mse(runs.size()), cpu(runs.size()), rays(runs.size()), share(runs.size());
         std::vector<bool> specularPixels = seesSpecular(scene);
         for (int seed = 1; seed <= seeds; ++seed)

@@ -4,6 +4,23 @@
 #include "bdpt.cpp"
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
+
+// make test's reporter (`--reporters=notes`): doctest's console output, except that a MESSAGE,
+// which reports a measured number and is no failure, becomes one line "  note file:line: text"
+// instead of a block between rules under the test case's name, which looked like a failure.
+namespace doctest {
+namespace {  // as doctest's own reporters: one per test program
+struct NotesReporter : ConsoleReporter {
+    using ConsoleReporter::ConsoleReporter;
+    void log_message(const MessageData& mb) override {
+        if (!(mb.m_severity & assertType::is_warn)) return ConsoleReporter::log_message(mb);
+        DOCTEST_LOCK_MUTEX(mutex)
+        s << "  note " << mb.m_file << ":" << mb.m_line << ": " << mb.m_string << "\n";
+    }
+};
+}  // namespace
+}  // namespace doctest
+DOCTEST_REGISTER_REPORTER("notes", 1, doctest::NotesReporter);
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <fcntl.h>
@@ -147,6 +164,8 @@ inline InterruptedRun interruptRun(const std::vector<std::string>& args, double 
         argv.push_back(nullptr);
         dup2(pipeErr[1], 2);
         close(pipeErr[0]);
+        int quiet = open("/dev/null", O_WRONLY);  // its summary line is not the test's output
+        if (quiet >= 0) dup2(quiet, 1);
         execv(argv[0], argv.data());
         _exit(127);
     }

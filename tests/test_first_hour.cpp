@@ -111,13 +111,16 @@ TEST_CASE("--strategies DIR is created, with its parents") {
 TEST_CASE("options that the method would ignore are refused, naming the method they belong to") {
     struct Case { std::vector<std::string> args; std::string message; };
     for (const Case& c : std::vector<Case>{
-             {{"--method", "pt", "--heuristic", "max"}, "--heuristic applies to --method bdpt and vcm, not to --method pt"},
+             {{"--method", "pt", "--heuristic", "max"}, "--heuristic applies to --method bdpt, vcm, mlt and mmlt, not to --method pt"},
              {{"--radius", "0.1"}, "--radius applies to --method vcm, not to --method bdpt"},
              {{"--method", "vcm", "--alpha", "0"}, "option --alpha needs a number from 0.001 to 1, got '0'"},
              {{"--mis"}, "--mis applies to --method nee, not to --method bdpt"},
              {{"--method", "nee", "--clamp", "1"}, "--clamp applies to --method ir, not to --method nee"},
              {{"--method", "lt", "--vpls", "4"}, "--vpls applies to --method ir, not to --method lt"},
-             {{"--method", "nee", "--roulette", "off"}, "--roulette applies to the methods that trace light paths (lt, ir, bdpt, vcm)"},
+             {{"--method", "nee", "--roulette", "off"}, "--roulette applies to the methods that trace light paths (lt, ir, bdpt, vcm, mlt, mmlt)"},
+             {{"--method", "bdpt", "--chains", "8"}, "--chains applies to --method mlt and mmlt, not to --method bdpt"},
+             {{"--method", "vcm", "--fixed-start"}, "--fixed-start applies to --method mlt and mmlt, not to --method vcm"},
+             {{"--method", "mlt", "--large-step", "1.5"}, "option --large-step needs a number from 0 to 1, got '1.5'"},
              {{"--method", "pt", "--no-adjoint-correction"}, "--no-adjoint-correction applies to the methods that trace light paths"},
              {{"--strategy-length", "3"}, "--strategy-length applies with --strategies DIR"},
              {{"--time", "1", "--spp", "4"}, "--time and --spp both given"},
@@ -164,7 +167,7 @@ TEST_CASE("a missing, empty or folder scene file: the real problem, not 'no came
     CHECK(run({"scenes"}).status == 2);
 }
 
-TEST_CASE("warnings before the work: one light takes nearly all of the choice; nothing the camera sees is lit") {
+TEST_CASE("warnings before the work: one light takes nearly all of the choice; a lamp facing the wrong way; nothing the camera sees is lit") {
     // A huge dim sky sphere and a small lamp: by power the sky takes 99.99% of the light choice.
     std::string sky = writeTempFile("sky.scene", "camera 0 1 -4  0 1 0  0 1 0  50  16 16\nmaterial m diffuse 0.5 0.5 0.5\n"
                                                  "quad -2 0 -2  4 0 0  0 0 4  m\n"
@@ -183,6 +186,19 @@ TEST_CASE("warnings before the work: one light takes nearly all of the choice; n
     CHECK(contains(r.err, "sees no light at all"));
     // The box of the furnace and the Cornell box raise neither.
     CHECK(run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--out", "build/tmp_fh5.png", "--quiet"}).err.empty());
+    // The Cornell box's lamp with u and v swapped faces the ceiling 0.1 mm above it: the room
+    // renders almost black (mean 0.0007 against 0.12), and the warning names the line and the fix.
+    std::string cornell = readFile("scenes/cornell.scene"), lamp = "quad 343 548.7 227   0 0 105   -130 0 0   lamp";
+    REQUIRE(cornell.find(lamp) != std::string::npos);
+    std::string swapped = writeTempFile("swapped.scene", cornell.replace(cornell.find(lamp), lamp.size(),
+                                                                         "quad 343 548.7 227   -130 0 0   0 0 105   lamp"));
+    r = run({swapped, "--res", "16x16", "--spp", "4", "--out", "build/tmp_fh5.png", "--quiet"});
+    CHECK(r.status == 0);
+    CHECK(contains(r.err, swapped + ":19: warning: this light's emitting side (u x v for a quad) faces a surface 0.0999 away: 0% of "
+                          "its light gets farther, 7"));
+    CHECK(contains(r.err, "swap its u and v"));
+    // A lamp 0.5 mm above a floor, with nothing around it (tests/thin-gap.scene), is meant so.
+    CHECK(run({"tests/thin-gap.scene", "--res", "8x8", "--spp", "1", "--out", "build/tmp_fh5.png", "--quiet"}).err.empty());
 }
 
 TEST_CASE("a scene sets the PNG's default exposure (the furnace: grey, not white); --exposure overrides it") {
@@ -212,4 +228,23 @@ TEST_CASE("Ctrl-C is said at once; twice within a second is one press (timeout s
     CHECK(r.err.find("bdpt: interrupted: finishing the pass in flight, then writing the image (Ctrl-C again to abandon it)") != std::string::npos);
     CHECK(fileExists("build/tmp_fh_int.png"));
     CHECK(fileExists("build/tmp_fh_int.pfm"));
+}
+
+TEST_CASE("--live: the PNG is rewritten whole while rendering, and the log grows pass by pass") {
+    // Killed (SIGKILL: nothing of bdpt runs after it) half-way through a long render: without
+    // --live there would be no PNG; with it the last one written is there, whole (PNG signature
+    // first, IEND chunk last), and the log holds the passes so far.
+    for (const char* f : {"build/tmp_fh_live.png", "build/tmp_fh_live.pfm", "build/tmp_fh_live.csv"}) std::remove(f);
+    auto [status, text] = shellRun("timeout -s KILL 2 ./bdpt scenes/cornell.scene --res 96x96 --spp 1000000 --live 0.2 "
+                                   "--log build/tmp_fh_live.csv --out build/tmp_fh_live.png");
+    CHECK(status != 0);  // killed
+    std::string png = readFile("build/tmp_fh_live.png");
+    REQUIRE(png.size() > 100);
+    CHECK(png.substr(1, 3) == "PNG");
+    CHECK(png.substr(png.size() - 8, 4) == "IEND");
+    CHECK(!fileExists("build/tmp_fh_live.pfm"));  // the PFM is the finished image's only
+    std::istringstream log(readFile("build/tmp_fh_live.csv"));
+    int rows = 0;
+    for (std::string line; std::getline(log, line);) rows += line.rfind("cornell,bdpt,", 0) == 0;
+    CHECK(rows >= 10);
 }

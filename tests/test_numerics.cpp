@@ -80,7 +80,7 @@ TEST_CASE("scale: the Cornell box at 1e-5, 1e-3, 1 and 1e3 gives the same quadra
             double rel = 0, relFixed = 0;
             double z = pairedZ(unit, passRegionMeans(scaledScene("scenes/cornell.scene", k, 24, 24), methodOptions(run.m, run.spp, 11), 2), &rel);
             double zFixed = pairedZ(unit, passRegionMeans(scaledScene("scenes/cornell.scene", k, 24, 24, true), methodOptions(run.m, run.spp, 11), 2), &relFixed);
-            MESSAGE("method " << int(run.m) << " scale " << k << ": z " << z << " rel " << rel << ", with the fixed offset " << zFixed << " rel " << relFixed);
+            MESSAGE(std::string(methodName(run.m)) << " scale " << k << ": z " << z << " rel " << rel << ", with the fixed offset " << zFixed << " rel " << relFixed);
             CHECK(z < 4);
             CHECK(rel < 1e-3);
             if (k == 1e-5f) CHECK(zFixed > 4);  // the rule of thumb: a 5.6 mm box loses 1% of its light

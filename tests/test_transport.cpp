@@ -233,7 +233,7 @@ TEST_CASE("shading normals: ir and bdpt agree with nee with the adjoint correcti
         double z = maxZ(nee, renderRegions(scene, quietOptions(run.m, run.spp, 45), 4));
         scene.adjointCorrection = false;
         double zWithout = maxZ(nee, renderRegions(scene, quietOptions(run.m, run.spp, 46), 4));
-        MESSAGE("method " << int(run.m) << ": z " << z << ", without the adjoint " << zWithout);
+        MESSAGE(std::string(methodName(run.m)) << ": z " << z << ", without the adjoint " << zWithout);
         CHECK(z < 4.5);
         CHECK(zWithout > 6);
     }
@@ -249,7 +249,7 @@ TEST_CASE("three lights of three kinds: nee --mis, lt and bdpt agree region by r
         CAPTURE(int(m));
         RegionEstimate other = renderRegions(scene, quietOptions(m, m == Method::LT ? 1024 : 256, 48), 4);
         double z = maxZ(nee, other);
-        MESSAGE("method " << int(m) << ": z " << z << " means " << nee.mean.back() << " " << other.mean.back());
+        MESSAGE(std::string(methodName(m)) << ": z " << z << " means " << nee.mean.back() << " " << other.mean.back());
         CHECK(z < 4.5);
     }
 }
