@@ -2,7 +2,8 @@
 // replay and restore, and the images against other methods region by region over independent
 // seeds. (Issue: Metropolis light transport.) A chain's passes are correlated, so their spread is
 // no error bar: every standard error here comes from independent seeds. The image mean alone
-// proves nothing: with expected-value splats it is the bootstrap's b whatever the chain does.
+// proves nothing: with expected-value splats each pass's is its estimate of b, whatever the
+// chains do.
 #include "helpers.h"
 
 namespace {
@@ -191,8 +192,8 @@ double chiSquare(const RegionEstimate& e, const RegionEstimate& ref) {
 TEST_CASE("mlt and mmlt agree with the references region by region, over 8 independent seeds") {
     // 16 regions: chi-square about 16 x 7/5 = 22 +- 11 when unbiased (the t-distribution of 8
     // seeds), with heavier tails where a seed's rare bright path dominates a region (cornell's
-    // mmlt gave 16 and 62 for two versions of b's estimate that 24 seeds both put at 13); each bug
-    // it must catch (tests/README.md) moved it above 1,800 on at least one scene.
+    // mmlt gave 16 and 62 with two versions of b's estimate; 24 seeds of the second gave 13); each
+    // bug it must catch (tests/README.md) moved it above 1,800 on at least one scene.
     struct Case { std::string scene; int spp; };
     for (Case c : {Case{"cornell", 32}, Case{"cornell-glass", 32}, Case{"door", 32}}) {
         Scene scene = sceneAt("scenes/" + c.scene + ".scene", 64, 64);
