@@ -1,4 +1,4 @@
-# bdpt: make (build), make run (render the default scene), make test, make clean.
+# bdpt: make (build), make run (render the default scene), make test, make clean; make help lists all.
 SHELL := /bin/bash
 MAKEFLAGS += --jobs=$(shell nproc 2>/dev/null || echo 2)  # test programs build in parallel
 CXX      ?= g++
@@ -56,9 +56,12 @@ build/scalar/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h tests/bench.h
 test: bdpt $(TESTS) build/native/test_bvh build/scalar/test_bvh
 	$(call run-tests,$(TESTS) build/native/test_bvh build/scalar/test_bvh)
 
-# Speed against accuracy (gnuplot-nox): references once, then charts and the failure table,
-# and the slides' six-panel figure. See tests/charts.sh for the budgets.
+# Speed against accuracy (gnuplot-nox), tests/charts.sh. Quick by default, into build/ only;
+# FULL=1 gives the notes' budgets (still into build/). make figures is the one target that
+# rewrites the committed figures and tables of lecture_notes/ (NOTES=1); make refs rewrites the
+# committed references in scenes/refs/. make help lists them with their durations.
 refs: bdpt
+	@echo "make refs: rewrites scenes/refs/ (committed), 2 seeds x 90 s per scene: about 40 minutes"
 	tests/charts.sh refs
 
 charts: bdpt
@@ -68,9 +71,29 @@ charts: bdpt
 panels: bdpt
 	tests/charts.sh panels
 
+efficiency: bdpt
+	tests/charts.sh efficiency
+
 figures: bdpt build/estimators
-	tests/charts.sh figures
-	tests/charts.sh notes
+	@echo "make figures: rewrites lecture_notes/figures/ and the tables in the pages (committed): about 35 minutes"
+	NOTES=1 tests/charts.sh charts
+	NOTES=1 tests/charts.sh efficiency
+	NOTES=1 tests/charts.sh figures
+	NOTES=1 tests/charts.sh notes
+
+help:
+	@echo "make            build ./bdpt (seconds)"
+	@echo "make run        render scenes/cornell.scene into cornell.png (seconds)"
+	@echo "make test       every test program (about 4 minutes on 2 cores); make test-sanitize (about 13)"
+	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
+	@echo "make uneven     bdpt, mlt and mmlt per region on the door: build/uneven-door.png (about 1 minute)"
+	@echo "make charts     error against time, every method and scene, 1.5 s a run: build/charts/ (about 5 minutes)"
+	@echo "make efficiency 1/(MSE x CPU-s) of every method, 64 samples, 2 seeds: build/efficiency.md (about 3 minutes)"
+	@echo "make bench      our BVH against Embree, cost per sample: printed only (about 3 minutes)"
+	@echo "                FULL=1 after charts, efficiency or bench: the notes' budgets (11, 12 and 15 minutes)"
+	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 35 minutes)"
+	@echo "make refs       REWRITES the committed references in scenes/refs/ (about 40 minutes)"
+	@echo "make fuzz       the scene parser under libFuzzer for FUZZ_SECONDS (60); make clean"
 
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it too).
 SANITIZE := -O1 -g -std=c++17 -Wall -Wextra -pthread -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
@@ -129,23 +152,7 @@ build/uneven: tests/uneven.cpp tests/bench.h bdpt.cpp build/flags
 uneven: build/uneven
 	./build/uneven $(UNEVEN_ARGS)
 
-# The table goes to lecture_notes/figures/efficiency.md and into Appendix A of the notes.
-efficiency: build/efficiency
-	./build/efficiency $(EFFICIENCY_ARGS) > build/efficiency.md.tmp && mv build/efficiency.md.tmp lecture_notes/figures/efficiency.md
-	awk -v table=lecture_notes/figures/efficiency.md ' \
-	  /<!-- efficiency:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next } \
-	  /<!-- efficiency:end -->/ { skip = 0 } \
-	  !skip' lecture_notes/appendix-a-speed-and-accuracy.md > build/appendix-a.tmp && mv build/appendix-a.tmp lecture_notes/appendix-a-speed-and-accuracy.md
-	grep -E '^\| (door|cornell|cornell-glass|glass-box) \| (nee --mis|lt|bdpt|mlt|mmlt) \|' lecture_notes/figures/efficiency.md | \
-	  { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'; \
-	    echo '|---|---|---|---|---|---|---|'; cat; } > build/metropolis-efficiency.md
-	awk -v table=build/metropolis-efficiency.md ' \
-	  /<!-- metropolis-efficiency:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next } \
-	  /<!-- metropolis-efficiency:end -->/ { skip = 0 } \
-	  !skip' lecture_notes/16-metropolis-sampling.md > build/page16.tmp && mv build/page16.tmp lecture_notes/16-metropolis-sampling.md
-	cat lecture_notes/figures/efficiency.md
-
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize fuzz bench efficiency uneven refs charts panels figures clean FORCE
+.PHONY: all run test test-sanitize fuzz bench efficiency uneven refs charts panels figures help clean FORCE

@@ -678,8 +678,10 @@ inline SurfacePoint surfaceAt(const Scene& scene, const Ray& ray, const Hit& hit
 //   Radiance:    f(wo,wi) |wi.ns|
 //   Importance:  f(wi,wo) |wi.ns| * |wo.ns||wi.ng| / (|wo.ng||wi.ns|)      (Veach 1997, ch. 5)
 // The second factor is the adjoint of a shading-normal BSDF: the geometry term G(x,y) holds
-// geometric cosines, the shading model replaces one by a shading cosine, and only the radiance
-// side cancels. Unbounded as |wo.ng| -> 0: the slides' "energy generator".
+// geometric cosines, the shading model replaces one by a shading cosine, and only on the radiance
+// side does the ratio cancel (bounded weights). On the importance side it is unbounded as
+// |wo.ng| -> 0. The "energy generator" is the BSDF itself, the same for both: eye paths render
+// its extra light as a bright surface, light paths as large weights (notes, page 13).
 // G's two cosines therefore live here, one at each end of a segment; connections multiply two
 // such factors (or an emitter/camera cosine) by V/d^2.
 // Refraction: radiance crossing into a denser medium is compressed into a smaller solid angle,
@@ -2962,28 +2964,31 @@ inline Image ratioColours(const Image& ratio) {
     return c;
 }
 
-// Labels for the strategy pyramid: a 3x5 pixel font of the few characters it needs.
+// Labels for the strategy pyramid: a 5-pixel-high font of the few characters it needs, 3 pixels
+// wide but for 'm', which needs 5 to read as m and not n.
 inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, int x0, int y0, const std::string& text, int scale) {
     static const std::map<char, const char*> glyphs = {
         {'0', "111101101101111"}, {'1', "010110010010111"}, {'2', "111001111100111"}, {'3', "111001111001111"},
         {'4', "101101111001001"}, {'5', "111100111001111"}, {'6', "111100111101111"}, {'7', "111001001001001"},
         {'8', "111101111101111"}, {'9', "111101111001111"}, {'s', "011100010001110"}, {'t', "010111010010011"},
         {'=', "000111000111000"}, {' ', "000000000000000"}, {'k', "100101110101101"},
-        {'m', "000110111101101"}, {'+', "000010111010000"}};
-    for (size_t i = 0; i < text.size(); ++i) {
-        auto g = glyphs.find(text[i]);
+        {'m', "0000011010101011010110101"}, {'+', "000010111010000"}};
+    int x = x0;
+    for (char ch : text) {
+        auto g = glyphs.find(ch);
         if (g == glyphs.end()) continue;
+        const int glyphWidth = int(std::strlen(g->second)) / 5;
         for (int gy = 0; gy < 5; ++gy)
-            for (int gx = 0; gx < 3; ++gx) {
-                if (g->second[gy * 3 + gx] != '1') continue;
-                for (int dy = 0; dy <= scale; ++dy)  // white with a one-pixel dark shadow
-                    for (int dx = 0; dx <= scale; ++dx) {
-                        int x = x0 + int(i) * 4 * scale + gx * scale + dx, y = y0 + gy * scale + dy;
-                        if (x < 0 || y < 0 || x >= width || y >= height) continue;
-                        unsigned char v = (dx < scale && dy < scale) ? 255 : 0;
-                        for (int c = 0; c < 3; ++c) rgb[3 * (size_t(y) * width + x) + c] = v;
+            for (int gx = 0; gx < glyphWidth; ++gx) {
+                if (g->second[gy * glyphWidth + gx] != '1') continue;
+                for (int dy = 0; dy < scale; ++dy)
+                    for (int dx = 0; dx < scale; ++dx) {
+                        int px = x + gx * scale + dx, py = y0 + gy * scale + dy;
+                        if (px < 0 || py < 0 || px >= width || py >= height) continue;
+                        for (int c = 0; c < 3; ++c) rgb[3 * (size_t(py) * width + px) + c] = 255;
                     }
             }
+        x += (glyphWidth + 1) * scale;
     }
 }
 
@@ -3023,41 +3028,64 @@ inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
 
 // The slides' "Contributions of different paths" as a pyramid: row k = path length (segments),
 // column s = vertices from the light (t = k+1-s from the camera), one image per strategy p_{k,s}.
+// Each tile's label sits in a strip above it, never on the image: the lamp, row 1's whole
+// content, lies at the top of the frame.
+struct PyramidLayout {
+    int W, H, gap = 4, scale, strip, rowH, columns, canvasW, canvasH;
+    PyramidLayout(int width, int height, int maxLength, bool merges)
+        : W(width), H(height), scale(std::max(1, std::min(width / 40, height / 32))), strip(7 * scale), rowH(strip + H + gap),
+          columns(maxLength + 1 + merges), canvasW(columns * (W + gap) + gap), canvasH(maxLength * rowH + gap) {}
+    int tileX(int k, int s, int maxLength) const { return gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap); }
+    int tileY(int k) const { return gap + (k - 1) * rowH + strip; }
+};
+
+// The montage of one kind (weighted or not), as sRGB bytes of layout.canvasW x layout.canvasH.
+inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLength, float exposure, bool weighted,
+                                                const PyramidLayout& layout, const std::vector<int>& rowStops) {
+    const bool merges = hasMergeImages(r, maxLength);
+    std::vector<unsigned char> canvas(size_t(layout.canvasW) * layout.canvasH * 3, 40);
+    for (int k = 1; k <= maxLength; ++k)
+        for (int s = 0; s <= k + merges; ++s) {  // s = k + 1: the merges of length k
+            int t = k + 1 - s;
+            bool merge = s == k + 1;
+            if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
+            const Image& img = r.strategyImages[2 * (merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, t)) + weighted];
+            std::string label = (merge ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(t)) +
+                                (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
+            std::vector<unsigned char> tile = toSRGBBytes(img, exposure + rowStops[k]);
+            int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
+            for (int y = 0; y < layout.H; ++y)
+                std::copy(tile.begin() + 3 * size_t(y) * layout.W, tile.begin() + 3 * size_t(y + 1) * layout.W,
+                          canvas.begin() + 3 * (size_t(y0 + y) * layout.canvasW + x0));
+            drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - 6 * layout.scale, label, layout.scale);
+        }
+    return canvas;
+}
+
 inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
     if (r.strategyImages.empty()) return true;
-    const int W = r.image.width, H = r.image.height, gap = 4;
     const bool merges = hasMergeImages(r, maxLength);
-    const int canvasW = (maxLength + 1 + merges) * (W + gap) + gap, canvasH = maxLength * (H + gap) + gap;
+    const PyramidLayout layout(r.image.width, r.image.height, maxLength, merges);
     const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
     bool ok = true;
     for (int weighted = 0; weighted < 2; ++weighted) {
-        std::vector<unsigned char> canvas(size_t(canvasW) * canvasH * 3, 40);
         for (int k = 1; k <= maxLength; ++k)
-            for (int s = 0; s <= k + merges; ++s) {  // s = k + 1: the merges of length k
-                int t = k + 1 - s;
+            for (int s = 0; s <= k + merges; ++s) {
                 bool merge = s == k + 1;
-                if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
-                const Image& img = r.strategyImages[2 * (merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, t)) + weighted];
-                std::string label = (merge ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(t)) +
-                                    (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
-                std::string name = dir + (merge ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(t)) +
+                if (merge && k == 1) continue;
+                const Image& img = r.strategyImages[2 * (merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, k + 1 - s)) + weighted];
+                std::string name = dir + (merge ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(k + 1 - s)) +
                                    (weighted ? "_weighted" : "_unweighted");
                 ok = ok && writePNG(img, name + ".png", exposure) && writePFM(img, name + ".pfm");
-                std::vector<unsigned char> tile = toSRGBBytes(img, exposure + rowStops[k]);
-                int x0 = gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap), y0 = gap + (k - 1) * (H + gap);
-                for (int y = 0; y < H; ++y)
-                    std::copy(tile.begin() + 3 * size_t(y) * W, tile.begin() + 3 * size_t(y + 1) * W,
-                              canvas.begin() + 3 * (size_t(y0 + y) * canvasW + x0));
-                drawLabel(canvas, canvasW, canvasH, x0 + 3, y0 + 3, label, std::max(1, std::min(W / 40, H / 32)));
             }
         std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
-        ok = ok && writePNGBytes(canvas, canvasW, canvasH, pyramid);
+        ok = ok && writePNGBytes(pyramidCanvas(r, maxLength, exposure, weighted, layout, rowStops), layout.canvasW, layout.canvasH, pyramid);
         if (ok) out << "wrote " << pyramid << "\n";
     }
     if (ok) {
         out << "pyramid rows k = 1.." << maxLength << " brightened by";
         for (int k = 1; k <= maxLength; ++k) out << " +" << rowStops[k];
-        out << " stops (printed in each tile)\n";
+        out << " stops (printed in each tile's label)\n";
     }
     return ok;
 }
@@ -3223,8 +3251,10 @@ Speed against accuracy
   --failure-table LOG.csv...  print the README's failure table (markdown) from such logs:
                     slope of log(rmse) against log(seconds), bias, fireflies, NaN count
 Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene
-file or option, 3 abandoned by a second Ctrl-C (nothing written), 130 interrupted by Ctrl-C (the
-completed passes written).
+file or option, 3 abandoned by a second Ctrl-C (nothing written), 4 out of memory (nothing
+written), 130 interrupted by Ctrl-C (the completed passes written).
+The make targets (charts, efficiency, bench, panels, ...): make help. All write into build/ but
+make figures and make refs, which rewrite the committed figures, tables and references.
 )";
 
 // --ratio: A/B over 4x4 blocks as a false-colour PNG and a PFM of the ratios (0 where undefined),

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Speed against accuracy. Usage:
 #   tests/charts.sh refs      references of every scene (once; kept in scenes/refs/, reused)
-#   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts
-#                             in lecture_notes/figures/, and the failure table in Appendix A of the notes
+#   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts,
+#                             the failure table and the reference check
+#   tests/charts.sh efficiency  make efficiency: error at equal samples and 1/(MSE x CPU-s)
 #   tests/charts.sh panels    the six panels at 40 paths per pixel into build/panels/ (make panels)
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time,
 #                             the thin-gap figure, sds-point by pt, bdpt and vcm (sds-vcm.png), the
@@ -12,18 +13,36 @@
 #   tests/charts.sh plots     the charts again from the logs of the last charts run (no rendering)
 #   tests/charts.sh tables    the failure table and the reference check from the runs' logs
 #   tests/charts.sh refcheck  the references' noise against the charted errors (also run by charts)
+# Where results go: into build/charts/ (a student's run never changes a committed file), unless
+# NOTES=1 (make figures), which writes the committed figures and tables of lecture_notes/ and
+# splices the tables into the pages. Budgets: quick by default (charts 1.5 s a run, efficiency
+# 64 samples and 2 seeds); FULL=1 (implied by NOTES=1) gives the notes' 4 s, 256 samples, 4 seeds.
 # SCENES="a b" limits refs and charts to some scenes (the tables always cover all of them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+NOTES=${NOTES:-}
+FULL=${FULL:-$NOTES}
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
 REF_SECONDS=${REF_SECONDS:-90}    # per reference seed: far more than a run, so its noise is far below
-RUN_SECONDS=${RUN_SECONDS:-4}     # per method and scene (156 runs: 11 minutes)
+# per method and scene (156 runs: 4 s each take 11 minutes, 1.5 s about 4.5)
+if [ -n "$FULL" ]; then RUN_SECONDS=${RUN_SECONDS:-4}; else RUN_SECONDS=${RUN_SECONDS:-1.5}; fi
 ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refraction shading-normals sds sds-point sds-ior1 door"
 SCENES=${SCENES:-$ALL_SCENES}
-FIG=lecture_notes/figures
-RECORD=lecture_notes/appendix-a-speed-and-accuracy.md  # where the generated tables go
 LOGS=build/charts
+if [ -n "$NOTES" ]; then FIG=lecture_notes/figures; else FIG=$LOGS/figures; fi
+RECORD=lecture_notes/appendix-a-speed-and-accuracy.md  # where the generated tables go (NOTES=1)
 mkdir -p "$FIG" "$LOGS/refs" scenes/refs
+
+# splice TABLE PAGE MARKER: the table replaces what stands between <!-- MARKER:start --> and
+# <!-- MARKER:end --> in the page (NOTES=1 only: otherwise the table stays in build/).
+splice() {
+  [ -n "$NOTES" ] || return 0
+  awk -v table="$1" -v marker="$3" '
+    $0 ~ "<!-- " marker ":start -->" { print; while ((getline line < table) > 0) print line; skip = 1; next }
+    $0 ~ "<!-- " marker ":end -->" { skip = 0 }
+    !skip' "$2" > build/splice.tmp && mv build/splice.tmp "$2"
+  echo "spliced $1 into $2"
+}
 
 clampFor() {  # G is in the scene's units: a clamp that removes a visible share in each
   case $1 in cornell*|indirect|shading-normals) echo 1e-5 ;; furnace) echo 0.1 ;; refraction) echo 0.05 ;; *) echo 0.2 ;; esac
@@ -117,6 +136,8 @@ furnaceReference() {
 }
 
 charts() {
+  local n; n=$(( $(echo $SCENES | wc -w) * $(methods cornell | wc -l) ))
+  echo "charts: $n runs of $RUN_SECONDS s, about $(awk -v n=$n -v t=$RUN_SECONDS 'BEGIN { printf "%.0f", n * (t + 0.25) / 60 + 0.5 }') minutes, into $FIG/"
   for s in $SCENES; do
     [ -f scenes/refs/$s.pfm ] || { echo "no reference scenes/refs/$s.pfm: run make refs" >&2; exit 1; }
     while IFS='|' read -r label opts; do
@@ -127,6 +148,25 @@ charts() {
     plotScene "$s"
   done
   SCENES=$ALL_SCENES tables
+}
+
+# make efficiency (tests/efficiency.cpp): its table in build/efficiency.md; with NOTES=1 also
+# lecture_notes/figures/efficiency.md, spliced into Appendix A, and page 16's rows of it.
+efficiency() {
+  make -s build/efficiency
+  local budget="--spp 64 --seeds 2" minutes=3
+  [ -n "$FULL" ] && budget="--spp 256 --seeds 4" minutes=12
+  echo "efficiency: $budget, about $minutes minutes, into build/efficiency.md"
+  # shellcheck disable=SC2086
+  ./build/efficiency $budget ${EFFICIENCY_ARGS:-} > build/efficiency.md.tmp && mv build/efficiency.md.tmp build/efficiency.md
+  cat build/efficiency.md
+  [ -n "$NOTES" ] || return 0
+  cp build/efficiency.md "$FIG/efficiency.md"
+  splice "$FIG/efficiency.md" "$RECORD" efficiency
+  grep -E '^\| (door|cornell|cornell-glass|glass-box) \| (nee --mis|lt|bdpt|mlt|mmlt) \|' "$FIG/efficiency.md" |
+    { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'
+      echo '|---|---|---|---|---|---|---|'; cat; } > build/metropolis-efficiency.md
+  splice build/metropolis-efficiency.md lecture_notes/16-metropolis-sampling.md metropolis-efficiency
 }
 
 plots() {  # the charts again from the runs' logs, without rendering (after a change of style)
@@ -155,7 +195,7 @@ set logscale xy
 set yrange [$ymin:*]
 set key outside right
 set grid
-set title "$s ($RES): RMSE without the lamp's pixels, equal time"
+set title "$s ($RES): RMSE without the lamp's pixels, equal time ($RUN_SECONDS s a run)"
 set xlabel "seconds (2 threads)"
 set ylabel "RMSE"
 set format y "%g"
@@ -169,12 +209,8 @@ tables() {
   local logs=()
   for s in $SCENES; do while IFS='|' read -r label opts; do logs+=("$LOGS/$s-$label.csv"); done < <(methods "$s"); done
   ./bdpt --failure-table "${logs[@]}" > "$FIG/failure-table.md"
-  # Splice the table into the record (Appendix A) between its markers.
-  awk -v table="$FIG/failure-table.md" '
-    /<!-- failure-table:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
-    /<!-- failure-table:end -->/ { skip = 0 }
-    !skip' "$RECORD" > "$RECORD.tmp" && mv "$RECORD.tmp" "$RECORD"
-  echo "failure table: $FIG/failure-table.md (and $RECORD)"
+  echo "failure table: $FIG/failure-table.md"
+  splice "$FIG/failure-table.md" "$RECORD" failure-table
   refcheck
 }
 
@@ -193,11 +229,8 @@ refcheck() {
         else printf "| %s | %s, 2 x %d s | %d + %d | %.5f | %.4f (%s) | %.1f |\n", s, $2, $3, $4, $5, n, b[1], b[2], b[1] / n }' scenes/refs/refs.csv
     done
   } > "$FIG/reference-check.md"
-  awk -v table="$FIG/reference-check.md" '
-    /<!-- reference-check:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
-    /<!-- reference-check:end -->/ { skip = 0 }
-    !skip' "$RECORD" > "$RECORD.tmp" && mv "$RECORD.tmp" "$RECORD"
-  echo "reference check: $FIG/reference-check.md (and $RECORD)"
+  echo "reference check: $FIG/reference-check.md"
+  splice "$FIG/reference-check.md" "$RECORD" reference-check
 }
 
 # The slides' six panels (a)-(f) on cornell-glass, one figure per KIND: 40 (paths per pixel) or
@@ -218,7 +251,8 @@ bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
     else
       t=$(./bdpt scenes/$scene.scene --method bdpt --spp 40 --out "$LOGS/fig/t.png" | sed -n 's/.* in \([0-9.e+-]*\) s.*/\1/p')
       while IFS='|' read -r name title opts; do
-        ./bdpt scenes/$scene.scene $opts --time "$t" --quiet --out "$LOGS/fig/$name-time.png"
+        ./bdpt scenes/$scene.scene $opts --time "$t" --out "$LOGS/fig/$name-time.png" |
+          sed -n 's/.*: \([0-9]*\) samples per pixel in.*/\1/p' > "$LOGS/fig/$name-time.spp"
       done <<< "$panels"
     fi
     caption="40 paths per pixel"; [ "$kind" = time ] && caption="equal time: $t s each (what bdpt needs for 40 paths per pixel)"
@@ -228,7 +262,8 @@ bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
       echo "set multiplot layout 2,3 title '$scene, $caption' font ',14'"
       echo 'unset border; unset tics; unset key; set size ratio -1; set lmargin 0; set rmargin 0; set tmargin 3.5; set bmargin 0'
       while IFS='|' read -r name title opts; do
-        echo "set title '$title'"
+        spp=40; [ "$kind" = time ] && spp=$(cat "$LOGS/fig/$name-time.spp")
+        echo "set title '$title, $spp spp'"
         echo "plot '$LOGS/fig/$name-$kind.png' binary filetype=png with rgbimage"
       done <<< "$panels"
       echo 'unset multiplot'
@@ -257,11 +292,8 @@ figures() {
 metropolis() {
   make -s build/uneven
   ./build/uneven --out "$FIG" | sed -n '/^|/p' > "$FIG/uneven-door.md"
-  awk -v table="$FIG/uneven-door.md" '
-    /<!-- uneven:start -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
-    /<!-- uneven:end -->/ { skip = 0 }
-    !skip' lecture_notes/16-metropolis-sampling.md > build/page16.tmp && mv build/page16.tmp lecture_notes/16-metropolis-sampling.md
-  echo "figure $FIG/uneven-door.png and table $FIG/uneven-door.md (and page 16)"
+  echo "figure $FIG/uneven-door.png and table $FIG/uneven-door.md"
+  splice "$FIG/uneven-door.md" lecture_notes/16-metropolis-sampling.md uneven
 }
 
 # Page 10's "Combination of Estimators: Example": four paths of k = 2 segments on cornell, each
@@ -277,7 +309,7 @@ estimators() {
     echo "set multiplot layout 2,2 title \"cornell: four paths of k = 2 segments, lamp centre -> the point seen in image row R of the middle column -> eye\\nA = p_{2,0} (a BSDF sample hits the lamp), B = p_{2,1} (next event), C = p_{2,2} (light tracing); filled: the one max keeps\" font ',11'"
     echo "set xrange [0:3.6]; set yrange [0:$ymax]; unset xtics; set ytics 1; set key off; set tmargin 4; set bmargin 3"
     echo "set xlabel 'width: p_X / largest p' offset 0,-0.5; set ylabel 'height: (f/p_X) / (f/largest p)'"
-    grep -v '^#' "$LOGS/estimators.txt" | while read -r row surface pa pb pc wa wb wc best; do
+    grep -v '^#' "$LOGS/estimators.txt" | while read -r row surface pa pb pc wa wb wc best cosLamp distance; do
       echo "unset object; unset label"
       x=0.1 i=1
       for X in A B C; do
@@ -387,4 +419,4 @@ notes() {  # every figure of the pages, by the commands they show
   done
 }
 
-"${1:-charts}"
+"${1:-charts}" "${@:2}"

@@ -8,6 +8,8 @@
 // heuristic keeps the widest; balance gives each the share p_X / (p_A + p_B + p_C).
 //   build/estimators [ROWS...]   one line per image row (all rows if none given):
 //   row  surface  p_A p_B p_C  (relative to the largest)  balance weights  max's choice
+//   then the lamp's emission cosine toward x_1 and the distance |x_1 - x_0|, the two factors of
+//   p_C that change along the wall (page 10 explains row 94 by them)
 #include "bench.h"
 #include "densities.h"
 
@@ -23,7 +25,7 @@ int main(int argc, char** argv) {
     if (rows.empty())
         for (int y = 0; y < cam.height; ++y) rows.push_back(y);
     const char* surfaceNames[] = {"floor", "ceiling", "back-wall", "left-wall", "right-wall"};
-    std::printf("# row surface pA pB pC wA wB wC max\n");
+    std::printf("# row surface pA pB pC wA wB wC max cos_lamp distance\n");
     for (int row : rows) {
         Ray ray = cameraRay(cam, 0.5f * cam.width, row + 0.5f);
         Hit hit = intersect(scene, ray);
@@ -34,8 +36,11 @@ int main(int argc, char** argv) {
         const double* p = path.p;
         double largest = std::max({p[0], p[1], p[2]}), sum = p[0] + p[1] + p[2];
         int best = int(std::max_element(p, p + 3) - p);
-        std::printf("%d %s %.6g %.6g %.6g %.4f %.4f %.4f %c\n", row, hit.shape < 5 ? surfaceNames[hit.shape] : "block",
-                    p[0] / largest, p[1] / largest, p[2] / largest, p[0] / sum, p[1] / sum, p[2] / sum, "ABC"[best]);
+        Vec3 toX1 = x1.p - x0.p;
+        float distance = length(toX1);
+        std::printf("%d %s %.6g %.6g %.6g %.4f %.4f %.4f %c %.3f %.0f\n", row, hit.shape < 5 ? surfaceNames[hit.shape] : "block",
+                    p[0] / largest, p[1] / largest, p[2] / largest, p[0] / sum, p[1] / sum, p[2] / sum, "ABC"[best],
+                    std::abs(dot(toX1, x0.ng)) / distance, distance);
     }
     return 0;
 }

@@ -771,6 +771,38 @@ TEST_CASE("the pyramid's rows are brightened to within half a stop of the bright
     CHECK(stops[5] >= 3);  // cornell keeps about half the light per bounce
 }
 
+TEST_CASE("the pyramid's labels never cover a tile: every tile in the montage is its image, pixel for pixel") {
+    // Labels drawn on the tiles hid row 1, the lamp at the top of the frame (second teacher's read).
+    for (Method m : {Method::BDPT, Method::VCM}) {
+        CAPTURE(methodName(m));
+        Scene scene = sceneAt("scenes/cornell.scene", 96, 64);  // labels at scale 2
+        RenderOptions o = quietOptions(m, 1, 95);
+        o.strategyMaxLength = 3;
+        RenderResult r = render(scene, o);
+        const bool merges = hasMergeImages(r, 3);
+        CHECK(merges == (m == Method::VCM));
+        PyramidLayout layout(96, 64, 3, merges);
+        std::vector<int> stops = pyramidRowStops(r, 3);
+        for (int weighted = 0; weighted < 2; ++weighted) {
+            std::vector<unsigned char> canvas = pyramidCanvas(r, 3, 0, weighted, layout, stops);
+            int tiles = 0, labelPixels = 0;
+            for (int k = 1; k <= 3; ++k)
+                for (int s = 0; s <= k; ++s) {
+                    std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + weighted], float(stops[k]));
+                    int x0 = layout.tileX(k, s, 3), y0 = layout.tileY(k), differ = 0;
+                    for (int y = 0; y < 64; ++y)
+                        for (int x = 0; x < 3 * 96; ++x) differ += canvas[3 * (size_t(y0 + y) * layout.canvasW + x0) + x] != tile[3 * size_t(y) * 96 + x];
+                    CHECK(differ == 0);
+                    for (int y = y0 - layout.strip; y < y0; ++y)  // the label is there, above the tile
+                        for (int x = x0; x < x0 + 20; ++x) labelPixels += canvas[3 * (size_t(y) * layout.canvasW + x)] == 255;
+                    ++tiles;
+                }
+            CHECK(tiles == 9);
+            CHECK(labelPixels > 9 * 20);
+        }
+    }
+}
+
 TEST_CASE("every heuristic gives Le/(1-a) = 2 in the furnace (ties between equal densities are shared)") {
     Scene scene = sceneAt("scenes/furnace.scene", 16, 16);
     for (Heuristic h : {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform}) {

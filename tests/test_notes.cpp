@@ -14,6 +14,33 @@ static std::string slurp(const std::string& path) {
     return s.str();
 }
 
+// The rows of a generated markdown table, each as its trimmed cells (the first, empty one dropped).
+static std::vector<std::vector<std::string>> tableRows(const std::string& path) {
+    std::vector<std::vector<std::string>> rows;
+    std::istringstream table(slurp(path));
+    for (std::string line; std::getline(table, line);) {
+        if (line.rfind("| ", 0) != 0) continue;
+        std::vector<std::string> cells;
+        std::istringstream row(line.substr(1));
+        for (std::string cell; std::getline(row, cell, '|');) {
+            size_t first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
+            cells.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
+        }
+        rows.push_back(cells);
+    }
+    return rows;
+}
+
+// A page's text with line breaks and runs of spaces as one space, so quotes may wrap.
+static std::string flatPage(const std::string& name) {
+    std::string out;
+    for (char c : slurp("lecture_notes/" + name)) {
+        if (c == '\n') c = ' ';
+        if (!(c == ' ' && !out.empty() && out.back() == ' ')) out += c;
+    }
+    return out;
+}
+
 static std::vector<std::string> notePages() {
     std::vector<std::string> pages;
     DIR* dir = opendir("lecture_notes");
@@ -61,6 +88,33 @@ static std::vector<std::string> quickArgs(const std::string& line) {
     }
     args.insert(args.end(), {"--spp", "1", "--res", "8x8", "--quiet"});
     return args;
+}
+
+TEST_CASE("the code the notes show is bdpt.cpp's, line for line") {
+    // An excerpt typed from memory drifts from the code (a second edition showed a loop that had
+    // moved to another function, with a call missing an argument). Every line of a ```cpp block
+    // but "..." must be a line of bdpt.cpp, indentation aside.
+    std::set<std::string> code;
+    std::istringstream source(slurp("bdpt.cpp"));
+    auto trim = [](const std::string& line) {
+        size_t first = line.find_first_not_of(' '), last = line.find_last_not_of(' ');
+        return first == std::string::npos ? std::string() : line.substr(first, last - first + 1);
+    };
+    for (std::string line; std::getline(source, line);) code.insert(trim(line));
+    int lines = 0;
+    for (const std::string& page : notePages()) {
+        std::istringstream text(slurp(page));
+        bool inCode = false;
+        for (std::string line; std::getline(text, line);) {
+            if (line.rfind("```", 0) == 0) { inCode = line == "```cpp"; continue; }
+            if (!inCode || trim(line).empty() || trim(line) == "...") continue;
+            CAPTURE(page);
+            CAPTURE(line);
+            CHECK(code.count(trim(line)) == 1);
+            ++lines;
+        }
+    }
+    CHECK(lines >= 8);
 }
 
 TEST_CASE("every command the notes show runs") {
@@ -338,29 +392,21 @@ TEST_CASE("Appendix A quotes the reference check's range of ratios as the genera
 
 TEST_CASE("the efficiencies the pages quote are the generated table's (make efficiency)") {
     // Typed prose beside a regenerated table goes stale; each quote is rebuilt from the table.
-    std::map<std::string, std::string> eff;  // "scene|method" -> "0.89x"
-    std::istringstream table(slurp("lecture_notes/figures/efficiency.md"));
-    for (std::string line; std::getline(table, line);) {
-        std::vector<std::string> cells;
-        std::istringstream row(line);
-        for (std::string cell; std::getline(row, cell, '|');) {
-            size_t first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
-            cells.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
-        }
-        if (cells.size() >= 7 && cells[6].size() > 1 && cells[6].back() == 'x') eff[cells[1] + "|" + cells[2]] = cells[6];
-    }
+    // "scene|method" -> the row's cells: MSE, CPU-s, rays/sample, efficiency ("0.89x"), share
+    std::map<std::string, std::vector<std::string>> eff;
+    for (const auto& cells : tableRows("lecture_notes/figures/efficiency.md"))
+        if (cells.size() >= 7 && cells[5].size() > 1 && cells[5].back() == 'x') eff[cells[0] + "|" + cells[1]] = {cells.begin() + 2, cells.end()};
     REQUIRE(eff.size() >= 60);
-    auto e = [&](const char* scene, const char* method) { return eff.at(std::string(scene) + "|" + method); };
-    auto flat = [](std::string text) {  // line breaks and runs of spaces as one space
-        std::string out;
-        for (char c : text) {
-            if (c == '\n') c = ' ';
-            if (!(c == ' ' && !out.empty() && out.back() == ' ')) out += c;
-        }
-        return out;
+    auto col = [&](const char* scene, const char* method, int i) { return eff.at(std::string(scene) + "|" + method).at(size_t(i)); };
+    auto e = [&](const char* scene, const char* method) { return col(scene, method, 3); };
+    auto ratio = [&](const char* format, const char* scene, const char* a, const char* b, int i) {  // cell a / cell b
+        char text[32];
+        std::snprintf(text, sizeof text, format, std::stod(col(scene, a, i)) / std::stod(col(scene, b, i)));
+        return std::string(text);
     };
-    std::string p12 = flat(slurp("lecture_notes/12-comparison-with-path-tracing.md")), p15 = flat(slurp("lecture_notes/15-vertex-merging.md")),
-                a = flat(slurp("lecture_notes/appendix-a-speed-and-accuracy.md"));
+    const int mse = 0, cpu = 1, rays = 2, share = 4;
+    std::string p10 = flatPage("10-combining-estimators.md"), p12 = flatPage("12-comparison-with-path-tracing.md"),
+                p15 = flatPage("15-vertex-merging.md"), a = flatPage("appendix-a-speed-and-accuracy.md");
     std::vector<std::pair<const std::string*, std::string>> quotes = {
         {&p12, "bdpt is " + e("cornell", "bdpt") + " nee --mis"},
         {&p12, e("indirect", "bdpt") + " on `scenes/indirect.scene`, " + e("glass-box", "bdpt") + " (glass-box) and " + e("cornell-glass", "bdpt") + " (cornell-glass)"},
@@ -375,9 +421,104 @@ TEST_CASE("the efficiencies the pages quote are the generated table's (make effi
         {&a, "(cornell-glass " + e("cornell-glass", "vcm") + " against " + e("cornell-glass", "bdpt") + ", glass-box " + e("glass-box", "vcm") + " against " + e("glass-box", "bdpt")},
         {&a, "mmlt's " + e("sds-ior1", "mmlt") + " passes bdpt's " + e("sds-ior1", "bdpt")},
         {&a, "light tracing leads (" + e("door", "lt") + "), bdpt follows (" + e("door", "bdpt") + ") and mlt reaches " + e("door", "mlt")},
+        {&p10, col("indirect", "bdpt", mse) + " for balance, " + col("indirect", "bdpt --heuristic power", mse) + " power, " +
+                   col("indirect", "bdpt --heuristic max", mse) + " max and " + col("indirect", "bdpt --heuristic uniform", mse) + " uniform"},
+        // numbers derived from the table: ratios of its cells
+        {&a, "a sample costs " + ratio("%.1fx", "cornell", "bdpt", "nee", cpu) + " (CPU seconds; " + col("cornell", "bdpt", rays) +
+                 " rays against " + col("cornell", "nee", rays) + ")"},
+        {&a, "For bdpt on glass-box that share is " + col("glass-box", "bdpt", share)},
+        {&a, "its MSE is " + ratio("%.0fx", "sds-ior1", "bdpt", "vcm", mse) + " below bdpt's"},
+        {&p15, "vcm's MSE is " + ratio("%.2fx", "glass-box", "vcm", "nee", mse) + " nee's, bdpt's " + ratio("%.2fx", "glass-box", "bdpt", "nee", mse)},
+        {&p15, "vcm's MSE is " + ratio("%.0fx", "sds-ior1", "bdpt", "vcm", mse) + " below bdpt's"},
+        {&a, "a mutation costs " + ratio("%.1fx", "door", "mlt", "bdpt", cpu) + " a bdpt sample there"},
+        {&a, col("door", "mlt", rays) + " rays per sample against " + col("door", "bdpt", rays)},
+    };
+    CHECK(col("door", "mlt", mse) == col("door", "bdpt", mse));  // "its MSE equals bdpt's"
+    for (const auto& [page, quote] : quotes) {
+        CAPTURE(quote);
+        CHECK(page->find(quote) != std::string::npos);
+    }
+}
+
+TEST_CASE("the slopes and biases the pages quote are the failure table's (make figures)") {
+    // "scene|method" -> {slope, bias}; a method is named by its label's first word, bdpt by
+    // its heuristic ("bdpt balance"), ir --clamp and nee --mis as such.
+    std::map<std::string, std::pair<std::string, std::string>> cell;
+    for (const auto& c : tableRows("lecture_notes/figures/failure-table.md")) {
+        if (c.size() < 4 || c[2] == "slope" || c[2].find("---") != std::string::npos) continue;
+        std::string m = c[1];
+        if (m.rfind("bdpt --heuristic ", 0) == 0) m = "bdpt " + m.substr(17);
+        else if (m.rfind("ir --vpls 16 --clamp", 0) == 0) m = "ir --clamp";
+        else if (m != "nee --mis") m = m.substr(0, m.find(' '));
+        cell[c[0] + "|" + m] = {c[2], c[3]};
+    }
+    REQUIRE(cell.size() == 156);  // 12 scenes x 13 methods, each row its own key
+    auto slope = [&](const char* s, const char* m) { return cell.at(std::string(s) + "|" + m).first; };
+    auto bias = [&](const char* s, const char* m) { return cell.at(std::string(s) + "|" + m).second; };
+    std::string p1 = flatPage("01-path-sampling-techniques.md"), p12 = flatPage("12-comparison-with-path-tracing.md"),
+                p14 = flatPage("14-power-versus-radiance.md"), p15 = flatPage("15-vertex-merging.md"),
+                a = flatPage("appendix-a-speed-and-accuracy.md");
+    std::vector<std::pair<const std::string*, std::string>> quotes = {
+        {&p1, "lt flattens at once (bias " + bias("cornell-glass", "lt")},
+        {&p1, "stays high (bias " + bias("cornell-glass", "ir")},
+        {&p12, "pt, nee, lt (bias " + bias("sds-point", "pt") + ": black), ir (" + bias("sds-point", "ir") + ") and bdpt (" + bias("sds-point", "bdpt balance")},
+        {&p12, "Only vcm falls (slope " + slope("sds-point", "vcm") + ", bias " + bias("sds-point", "vcm") + ")"},
+        {&p12, "uniform heuristic has a slope of " + slope("sds-point", "bdpt uniform")},
+        {&p14, "(bias " + bias("refraction", "lt") + "): it cannot"},
+        {&p14, "ir levels off too (" + bias("refraction", "ir")},
+        {&a, "bdpt " + bias("sds-point", "bdpt balance") + " and " + bias("sds-ior1", "bdpt balance") + ", slope 0"},
+        {&a, "vcm on `sds-point` and `sds-ior1` (slope " + slope("sds-point", "vcm") + " and " + slope("sds-ior1", "vcm") + ", bias " +
+                 bias("sds-point", "vcm") + " and " + bias("sds-ior1", "vcm") + ")"},
+        {&a, "from " + slope("refraction", "vcm") + ", vcm on `refraction`, to " + slope("refraction", "mmlt") + ", mmlt there"},
+        {&a, "fireflies (slope " + slope("sds", "vcm") + ")"},
+        {&p15, "vcm " + slope("sds-ior1", "vcm") + " on sds-ior1 and " + slope("sds-point", "vcm") + " on sds-point, while bdpt's error there stays flat at " +
+                   bias("sds-ior1", "bdpt balance") + " and " + bias("sds-point", "bdpt balance") + " (slope " + slope("sds-ior1", "bdpt balance") +
+                   " and " + slope("sds-point", "bdpt balance") + ")"},
+        {&a, "lt on `cornell-point` (" + bias("cornell-point", "lt") + ", slope 0)"},
+        {&a, "(" + bias("cornell", "ir --clamp") + " on cornell, " + bias("indirect", "ir --clamp") + " on indirect"},
+        {&a, "from " + bias("cornell-glass", "ir") + ", ir on cornell-glass, to " + bias("refraction", "ir") + ", ir on refraction"},
     };
     for (const auto& [page, quote] : quotes) {
         CAPTURE(quote);
         CHECK(page->find(quote) != std::string::npos);
+    }
+}
+
+TEST_CASE("page 10's four paths: the numbers its text quotes are the densities' (tests/estimators.cpp)") {
+    // The paths of the figure: lamp centre -> the point seen in row R of the middle column -> eye.
+    Scene scene = loadScene("scenes/cornell.scene");
+    int lamp = -1;
+    for (size_t i = 0; i < scene.shapes.size(); ++i)
+        if (scene.shapes[i].light >= 0) lamp = int(i);
+    SurfacePoint x0 = sampleShapePoint(scene, lamp, 0.5f, 0.5f);
+    std::map<int, TwoSegmentPath> paths;
+    std::map<int, float> cosLamp, distance;
+    for (int row : {62, 78, 94, 150}) {
+        Ray ray = cameraRay(scene.camera, 0.5f * scene.camera.width, row + 0.5f);
+        SurfacePoint x1 = surfaceAt(scene, ray, intersect(scene, ray));
+        paths[row] = twoSegmentPath(scene, lamp, x0, x1);
+        REQUIRE(paths[row].valid);
+        distance[row] = length(x1.p - x0.p);
+        cosLamp[row] = std::abs(dot(x1.p - x0.p, x0.ng)) / distance[row];
+    }
+    auto text = [](const char* format, double v) { char b[32]; std::snprintf(b, sizeof b, format, v); return std::string(b); };
+    auto cb = [&](int row) { return paths[row].p[2] / paths[row].p[1]; };  // p_C / p_B
+    std::string p10 = flatPage("10-combining-estimators.md");
+    std::vector<std::string> quotes = {
+        "p_C / p_B is " + text("%.2f", cb(62)) + ", " + text("%.2f", cb(78)) + " and " + text("%.2f", cb(94)) + " at rows 62, 78 and 94",
+        text("%.3f", cosLamp[62]) + " at row 62, " + text("%.3f", cosLamp[94]) + " at row 94",
+        "longer distance (" + text("%.0f", distance[62]) + " to " + text("%.0f", distance[94]) + ")",
+    };
+    // A's width relative to the widest, and its height f/p_A relative to the widest's: the range
+    double smallest = 1e30, largest = 0;
+    for (auto& [row, path] : paths) {
+        double relative = path.p[0] / std::max({path.p[0], path.p[1], path.p[2]});
+        smallest = std::min(smallest, 1 / relative);
+        largest = std::max(largest, 1 / relative);
+    }
+    quotes.push_back("f/p_A is " + text("%.0f", smallest) + " to " + text("%.0f", largest) + " times the widest one's");
+    for (const std::string& quote : quotes) {
+        CAPTURE(quote);
+        CHECK(p10.find(quote) != std::string::npos);
     }
 }

@@ -146,6 +146,18 @@ TEST_CASE("energy generator: a floor with a constant tilted shading normal refle
     MESSAGE("image means nee " << nee.mean.back() << " lt " << lt.mean.back() << " lt unadjoined " << ltUncorrected.mean.back());
     CHECK(maxZ(nee, lt) < 4.5);
     CHECK(ltUncorrected.mean.back() < 0.5 * nee.mean.back());
+    // Camera paths render the generated energy too: their weights stay bounded, but the BSDF they
+    // integrate, f' |wi.ns| / |wi.ng|, is the same. Expected from the geometry alone: toward the
+    // lamp's centre from the floor's, |w.ns| / |w.ng| = 7.4 (the floor's other points see the lamp
+    // a little higher, so a little less). "Eye paths see nothing strange" would give 1.
+    RegionEstimate neePlain = renderRegions(plain, quietOptions(Method::NEE, 256, 47), 2);
+    Vec3 toLamp = normalize(Vec3(0, 0.5f, 4)), ns = tilted.shapes[0].tiltedNormal;
+    double expected = std::abs(dot(toLamp, ns)) / std::abs(toLamp.y);
+    double brighter = nee.mean.back() / neePlain.mean.back();
+    MESSAGE("nee, tilted floor / untilted: " << nee.mean.back() << " / " << neePlain.mean.back() << " = " << brighter
+            << " (|w.ns| / |w.ng| at the centre " << expected << ")");
+    CHECK(brighter > 0.75 * expected);
+    CHECK(brighter < 1.05 * expected);
 }
 
 TEST_CASE("lt equals nee on cornell, region by region") {
