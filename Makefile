@@ -31,7 +31,8 @@ bdpt: bdpt.cpp build/flags
 	$(CXX) $(CXXFLAGS) -o $@ $< $(LDLIBS)
 
 run: bdpt
-	./bdpt scenes/cornell.scene --spp 64 --out cornell.png
+	@mkdir -p build
+	./bdpt scenes/cornell.scene --spp 64 --out build/cornell.png
 
 build/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h tests/densities.h build/flags
 	@mkdir -p build
@@ -69,6 +70,7 @@ charts: bdpt
 
 # The slides' six panels at 40 paths per pixel, for a class: build/panels/six-panels-40.png.
 panels: bdpt
+	@echo "make panels: six renders at 40 paths per pixel, about half a minute, into build/panels/"
 	tests/charts.sh panels
 
 efficiency: bdpt
@@ -83,7 +85,7 @@ figures: bdpt build/estimators
 
 help:
 	@echo "make            build ./bdpt (seconds)"
-	@echo "make run        render scenes/cornell.scene into cornell.png (seconds)"
+	@echo "make run        render scenes/cornell.scene into build/cornell.png (seconds)"
 	@echo "make test       every test program (about 4 minutes on 2 cores); make test-sanitize (about 13)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
 	@echo "make uneven     bdpt, mlt and mmlt per region on the door: build/uneven-door.png (about 1 minute)"
@@ -150,6 +152,7 @@ build/uneven: tests/uneven.cpp tests/bench.h bdpt.cpp build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 uneven: build/uneven
+	@echo "make uneven: bdpt, mlt and mmlt, 8 seeds x 2 s each on one thread: about 1 minute, into build/"
 	./build/uneven $(UNEVEN_ARGS)
 
 clean:

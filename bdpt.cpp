@@ -1235,7 +1235,7 @@ struct RenderOptions {
     Heuristic heuristic{};     // bdpt: how strategies are weighted (balance)
     int strategyMaxLength = 0; // bdpt, vcm: > 0 records per-strategy images up to this path length
     float mergeRadius = -1;    // vcm: r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
-    float alpha = 0.75f;       // vcm: r_i = r_0 i^((alpha-1)/2)
+    float alpha = 0.75f;       // vcm: r(n) = r_0 n^((alpha-1)/2) in pass n
     float largeStep = 0.3f;    // mlt, mmlt: probability of a large step (every number afresh)
     float sigma = 0.01f;       // mlt, mmlt: a small step's standard deviation, per number
     int bootstrap = 0;         // mlt, mmlt: samples that estimate b and choose the chains' starts (0: bootstrapSamples)
@@ -1997,8 +1997,8 @@ inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, in
 // mergeEta = pi r^2 N the only new number. Every heuristic applies as to connections (the max
 // heuristic, uniform: unchanged definitions over the larger set of strategies).
 // The kernel makes the merge biased: it blurs over the disk, so a pass's estimate is too smooth
-// by about r. Each pass shrinks the radius, r_i = r_0 i^((alpha-1)/2) (Knaus and Zwicker 2011's
-// progressive photon mapping), slowly enough (alpha in (0,1)) that the variance, which grows like
+// by about r. Each pass shrinks the radius, r(n) = r_0 n^((alpha-1)/2) in pass n (the closed form
+// of Knaus and Zwicker 2011's radius recursion for progressive photon mapping, as SmallVCM has it), slowly enough (alpha in (0,1)) that the variance, which grows like
 // 1/r^2, is still averaged away: bias and variance both vanish as passes go on (consistent), and
 // the error falls more slowly than -1/2 in log(error) against log(time).
 // Per pass: trace every pixel's light subpath (the same as bdpt's), keep them all, put their
@@ -2131,7 +2131,7 @@ inline float defaultMergeRadius(const Scene& scene) {
     return (distance > 0 ? distance : 1) * 2 * cam.tanHalfFov / cam.height;
 }
 
-inline float mergeRadius(const Scene& scene, const RenderOptions& opt, int pass) {  // r_i = r_0 i^((alpha-1)/2), i = pass + 1
+inline float mergeRadius(const Scene& scene, const RenderOptions& opt, int pass) {  // r(n) = r_0 n^((alpha-1)/2), n = pass + 1
     float r0 = opt.mergeRadius >= 0 ? opt.mergeRadius : defaultMergeRadius(scene);
     return r0 * std::pow(float(pass + 1), (opt.alpha - 1) / 2);
 }
@@ -3039,26 +3039,35 @@ struct PyramidLayout {
     int tileY(int k) const { return gap + (k - 1) * rowH + strip; }
 };
 
+// Every tile of the pyramid, row by row: fn(k, s, image index); s = k + 1 is the merges of
+// length k (vcm), named "m k".
+template <class Fn>
+void forEachPyramidTile(int maxLength, bool merges, Fn fn) {
+    for (int k = 1; k <= maxLength; ++k)
+        for (int s = 0; s <= k + merges; ++s) {
+            bool merge = s == k + 1;
+            if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
+            fn(k, s, merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, k + 1 - s));
+        }
+}
+
+inline std::string tileName(int k, int s) {  // "s1 t3", or "m k3" for the merges
+    return s == k + 1 ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(k + 1 - s);
+}
+
 // The montage of one kind (weighted or not), as sRGB bytes of layout.canvasW x layout.canvasH.
 inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLength, float exposure, bool weighted,
                                                 const PyramidLayout& layout, const std::vector<int>& rowStops) {
-    const bool merges = hasMergeImages(r, maxLength);
     std::vector<unsigned char> canvas(size_t(layout.canvasW) * layout.canvasH * 3, 40);
-    for (int k = 1; k <= maxLength; ++k)
-        for (int s = 0; s <= k + merges; ++s) {  // s = k + 1: the merges of length k
-            int t = k + 1 - s;
-            bool merge = s == k + 1;
-            if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
-            const Image& img = r.strategyImages[2 * (merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, t)) + weighted];
-            std::string label = (merge ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(t)) +
-                                (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
-            std::vector<unsigned char> tile = toSRGBBytes(img, exposure + rowStops[k]);
-            int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
-            for (int y = 0; y < layout.H; ++y)
-                std::copy(tile.begin() + 3 * size_t(y) * layout.W, tile.begin() + 3 * size_t(y + 1) * layout.W,
-                          canvas.begin() + 3 * (size_t(y0 + y) * layout.canvasW + x0));
-            drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - 6 * layout.scale, label, layout.scale);
-        }
+    forEachPyramidTile(maxLength, hasMergeImages(r, maxLength), [&](int k, int s, int index) {
+        std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * index + weighted], exposure + rowStops[k]);
+        int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
+        for (int y = 0; y < layout.H; ++y)
+            std::copy(tile.begin() + 3 * size_t(y) * layout.W, tile.begin() + 3 * size_t(y + 1) * layout.W,
+                      canvas.begin() + 3 * (size_t(y0 + y) * layout.canvasW + x0));
+        std::string label = tileName(k, s) + (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
+        drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - 6 * layout.scale, label, layout.scale);
+    });
     return canvas;
 }
 
@@ -3069,15 +3078,12 @@ inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std:
     const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
     bool ok = true;
     for (int weighted = 0; weighted < 2; ++weighted) {
-        for (int k = 1; k <= maxLength; ++k)
-            for (int s = 0; s <= k + merges; ++s) {
-                bool merge = s == k + 1;
-                if (merge && k == 1) continue;
-                const Image& img = r.strategyImages[2 * (merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, k + 1 - s)) + weighted];
-                std::string name = dir + (merge ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(k + 1 - s)) +
-                                   (weighted ? "_weighted" : "_unweighted");
-                ok = ok && writePNG(img, name + ".png", exposure) && writePFM(img, name + ".pfm");
-            }
+        forEachPyramidTile(maxLength, merges, [&](int k, int s, int index) {
+            std::string name = dir + (s == k + 1 ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(k + 1 - s)) +
+                               (weighted ? "_weighted" : "_unweighted");
+            ok = ok && writePNG(r.strategyImages[2 * index + weighted], name + ".png", exposure) &&
+                 writePFM(r.strategyImages[2 * index + weighted], name + ".pfm");
+        });
         std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
         ok = ok && writePNGBytes(pyramidCanvas(r, maxLength, exposure, weighted, layout, rowStops), layout.canvasW, layout.canvasH, pyramid);
         if (ok) out << "wrote " << pyramid << "\n";
@@ -3166,7 +3172,8 @@ inline int printFailureTable(const std::vector<std::string>& logs, std::ostream&
 
 const char* kUsage = R"(usage: bdpt SCENE [options]
 Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)
-and, beside it, a PFM with the linear values.
+and, beside it, a PFM with the linear values. For example:
+  ./bdpt scenes/cornell.scene --method bdpt --spp 64 --out build/cornell.png
 
 Method
   --method M        pt   (a) eye tracing: emission counted only when a path hits a light
@@ -3188,11 +3195,12 @@ Method
                     make the path)
   --radius R        vcm: merging radius r_0 of the first pass (default: one pixel's footprint
                     where the central camera ray meets the scene); 0: no merging, as bdpt
-  --alpha A         vcm: radius schedule r_i = r_0 i^((A-1)/2), 0 < A <= 1 (default 0.75)
+  --alpha A         vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1
+                    (default 0.75)
   --strategies DIR  bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length
                     (vcm: and one of all merges per path length), unweighted and MIS-weighted,
                     and two pyramid montages, into DIR (each pyramid row brightened by the
-                    stops printed in its tiles)
+                    stops printed in its tiles' labels)
   --strategy-length K  longest path (segments) with per-strategy images (default 5)
   --large-step P    mlt, mmlt: probability of a large step, every number drawn afresh (0.3)
   --sigma S         mlt, mmlt: a small step moves each number by a normal of deviation S,
@@ -3205,7 +3213,7 @@ Method
   --roulette R      lt, ir, bdpt, vcm, mlt, mmlt: how subpaths end: throughput (q from the
                     throughput after --rr-start bounces, as pt and nee), albedo (q = the
                     material's albedo at every vertex, counted in bdpt's MIS densities) or off
-                    (only --maxdepth)
+                    (only --maxdepth); default albedo
   --rr-start N      pt, nee (and --roulette throughput): Russian roulette from bounce N on
                     (default 3); N > --maxdepth turns it off (lecture notes, page 9)
 Deliberate mistakes (slides: "Non-symmetric scattering")
@@ -3215,7 +3223,8 @@ Deliberate mistakes (slides: "Non-symmetric scattering")
   --fixed-ray-offset       push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)
                     instead of the hit point's error bound (see tests/thin-gap.scene)
   --delta-density-one      bdpt, vcm, mlt, mmlt: after a mirror or glass, store the MIS densities
-                    as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy s = 0
+                    as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy
+                    s = 0
   --fixed-start     mlt, mmlt: every chain starts from one fixed state (the first bootstrap
                     sample that carries light) instead of one chosen in proportion to its
                     brightness: start-up bias, visible at short runs
@@ -3326,12 +3335,13 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
     auto integer = [&](size_t& i, double lo, double hi) -> long long {
         std::string name = args[i];
         double x = number(i, lo, hi);
-        if (x != std::floor(x)) fail("option " + name + " needs a whole number");
+        if (x != std::floor(x)) fail("option " + name + " needs a whole number, got '" + printable(args[i]) + "'");
         return (long long)x;
     };
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        given.insert(a);
+        if (a.size() > 2 && a[0] == '-' && a[1] == '-' && !given.insert(a).second)
+            fail("option " + printable(a) + " given twice (which one did you mean?)");
         if (a == "--help" || a == "-h") cl.help = true;
         else if (a == "--method") {
             std::string m = value(i);
@@ -3405,7 +3415,11 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             if (double(w) * h > 64e6) fail("option --res: " + printable(v) + " is larger than 64 megapixels (as in scene files)");
             cl.width = w;
             cl.height = h;
-        } else if (!a.empty() && a[0] == '-') fail("unknown option '" + printable(a) + "'");
+        } else if (!a.empty() && a[0] == '-') {
+            size_t equals = a.find('=');
+            fail("unknown option '" + printable(a) + "'" +
+                 (equals != std::string::npos ? " (write '" + printable(a.substr(0, equals)) + " " + printable(a.substr(equals + 1)) + "')" : ""));
+        }
         else if (cl.scenePath.empty()) cl.scenePath = a;
         else fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
     }

@@ -12,7 +12,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ -n "${FULL:-}" ]; then default_rays=4194304; else default_rays=524288; fi
 runs=${1:-3}; rays=${2:-$default_rays}
-echo "bench: $runs interleaved runs of $rays rays per set$([ -n "${FULL:-}" ] || echo " (FULL=1: 4194304, as Appendix B)")"
+echo "bench: $runs interleaved runs of $rays rays per set, about $([ -n "${FULL:-}" ] && echo 15 || echo 3) minutes$([ -n "${FULL:-}" ] || echo " (FULL=1: 4194304, as Appendix B)")"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for i in $(seq "$runs"); do

@@ -230,8 +230,9 @@ TEST_CASE("PFM round trip and atomic output files") {
 static void expectBadInput(const std::string& sceneText, const std::vector<std::string>& extraArgs, const std::string& message) {
     std::string scene = writeTempFile("bad.scene", sceneText), out = "build/tmp_bad_out.png";
     std::remove(out.c_str());
-    std::vector<std::string> args = {scene, "--out", out, "--spp", "1", "--quiet"};
+    std::vector<std::string> args = {scene, "--out", out, "--quiet"};
     args.insert(args.end(), extraArgs.begin(), extraArgs.end());
+    if (std::find(extraArgs.begin(), extraArgs.end(), "--spp") == extraArgs.end()) args.insert(args.end(), {"--spp", "1"});
     std::ostringstream so, se;
     int status = runCommandLine(args, so, se);
     CAPTURE(sceneText);
@@ -271,6 +272,9 @@ TEST_CASE("bad input: file:line message, exit 2, no output file") {
     expectBadInput(cam + light, {"--fast"}, "bdpt: unknown option '--fast'");
     expectBadInput(cam + light, {"--spp", "0"}, "bdpt: option --spp needs a number from 1");
     expectBadInput(cam + light, {"--spp"}, "bdpt: option --spp needs a value");
+    expectBadInput(cam + light, {"--spp", "1.5"}, "bdpt: option --spp needs a whole number, got '1.5'");
+    expectBadInput(cam + light, {"--spp", "4", "--spp", "8"}, "bdpt: option --spp given twice");
+    expectBadInput(cam + light, {"--out=x.png"}, "bdpt: unknown option '--out=x.png' (write '--out x.png')");
     std::ostringstream so, se;
     CHECK(runCommandLine({"build/does-not-exist.scene", "--out", "build/tmp_bad_out.png"}, so, se) == 2);
     CHECK(se.str() == "build/does-not-exist.scene: cannot open the scene file: No such file or directory\n");

@@ -406,7 +406,8 @@ TEST_CASE("the efficiencies the pages quote are the generated table's (make effi
     };
     const int mse = 0, cpu = 1, rays = 2, share = 4;
     std::string p10 = flatPage("10-combining-estimators.md"), p12 = flatPage("12-comparison-with-path-tracing.md"),
-                p15 = flatPage("15-vertex-merging.md"), a = flatPage("appendix-a-speed-and-accuracy.md");
+                p15 = flatPage("15-vertex-merging.md"), p16 = flatPage("16-metropolis-sampling.md"),
+                a = flatPage("appendix-a-speed-and-accuracy.md");
     std::vector<std::pair<const std::string*, std::string>> quotes = {
         {&p12, "bdpt is " + e("cornell", "bdpt") + " nee --mis"},
         {&p12, e("indirect", "bdpt") + " on `scenes/indirect.scene`, " + e("glass-box", "bdpt") + " (glass-box) and " + e("cornell-glass", "bdpt") + " (cornell-glass)"},
@@ -430,10 +431,23 @@ TEST_CASE("the efficiencies the pages quote are the generated table's (make effi
         {&a, "its MSE is " + ratio("%.0fx", "sds-ior1", "bdpt", "vcm", mse) + " below bdpt's"},
         {&p15, "vcm's MSE is " + ratio("%.2fx", "glass-box", "vcm", "nee", mse) + " nee's, bdpt's " + ratio("%.2fx", "glass-box", "bdpt", "nee", mse)},
         {&p15, "vcm's MSE is " + ratio("%.0fx", "sds-ior1", "bdpt", "vcm", mse) + " below bdpt's"},
+        {&p16, "its MSE at equal mutations is " + ratio("%.0f", "cornell", "mmlt", "mlt", mse) + " to " +
+                   ratio("%.0f", "cornell-glass", "mmlt", "mlt", mse) + " times mlt's"},
         {&a, "a mutation costs " + ratio("%.1fx", "door", "mlt", "bdpt", cpu) + " a bdpt sample there"},
         {&a, col("door", "mlt", rays) + " rays per sample against " + col("door", "bdpt", rays)},
     };
     CHECK(col("door", "mlt", mse) == col("door", "bdpt", mse));  // "its MSE equals bdpt's"
+    // page 16: glass-box's ratio lies between cornell's and cornell-glass's, the range it quotes
+    double glassBox = std::stod(col("glass-box", "mmlt", mse)) / std::stod(col("glass-box", "mlt", mse));
+    CHECK(glassBox >= std::stod(ratio("%.3f", "cornell", "mmlt", "mlt", mse)));
+    CHECK(glassBox <= std::stod(ratio("%.3f", "cornell-glass", "mmlt", "mlt", mse)));
+    // page 16: "mlt's and mmlt's unevenness are above bdpt's (the table)", the spliced make uneven table
+    std::map<std::string, double> unevenness;
+    for (const auto& cells : tableRows("lecture_notes/figures/uneven-door.md"))
+        if (cells.size() >= 5 && cells[4].find_first_of("0123456789") == 0) unevenness[cells[0]] = std::stod(cells[4]);
+    REQUIRE(unevenness.size() == 3);
+    CHECK(unevenness["mlt"] > unevenness["bdpt"]);
+    CHECK(unevenness["mmlt"] > unevenness["bdpt"]);
     for (const auto& [page, quote] : quotes) {
         CAPTURE(quote);
         CHECK(page->find(quote) != std::string::npos);
