@@ -24,7 +24,7 @@ NOTES=${NOTES:-}
 FULL=${FULL:-$NOTES}
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
 REF_SECONDS=${REF_SECONDS:-90}    # per reference seed: far more than a run, so its noise is far below
-# per method and scene (156 runs: 4 s each take 11 minutes, 1.5 s about 4.5)
+# per method and scene (156 runs: 4 s each take 11 minutes, 1.5 s about 4)
 if [ -n "$FULL" ]; then RUN_SECONDS=${RUN_SECONDS:-4}; else RUN_SECONDS=${RUN_SECONDS:-1.5}; fi
 ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refraction shading-normals sds sds-point sds-ior1 door"
 SCENES=${SCENES:-$ALL_SCENES}
@@ -137,7 +137,7 @@ furnaceReference() {
 
 charts() {
   local n; n=$(( $(echo $SCENES | wc -w) * $(methods cornell | wc -l) ))
-  echo "charts: $n runs of $RUN_SECONDS s, about $(awk -v n=$n -v t=$RUN_SECONDS 'BEGIN { printf "%.0f", n * (t + 0.25) / 60 + 0.5 }') minutes, into $FIG/"
+  echo "charts: $n runs of $RUN_SECONDS s, about $(awk -v n=$n -v t=$RUN_SECONDS 'BEGIN { printf "%.0f", n * (t + 0.1) / 60 }') minutes, into $FIG/"
   for s in $SCENES; do
     [ -f scenes/refs/$s.pfm ] || { echo "no reference scenes/refs/$s.pfm: run make refs" >&2; exit 1; }
     while IFS='|' read -r label opts; do
@@ -154,7 +154,7 @@ charts() {
 # lecture_notes/figures/efficiency.md, spliced into Appendix A, and page 16's rows of it.
 efficiency() {
   make -s build/efficiency
-  local budget="--spp 64 --seeds 2" minutes=3
+  local budget="--spp 64 --seeds 2" minutes=2
   [ -n "$FULL" ] && budget="--spp 256 --seeds 4" minutes=12
   echo "efficiency: $budget, about $minutes minutes, into build/efficiency.md"
   # shellcheck disable=SC2086
