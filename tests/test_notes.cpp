@@ -458,6 +458,7 @@ TEST_CASE("the slopes and biases the pages quote are the failure table's (make f
     // "scene|method" -> {slope, bias}; a method is named by its label's first word, bdpt by
     // its heuristic ("bdpt balance"), ir --clamp and nee --mis as such.
     std::map<std::string, std::pair<std::string, std::string>> cell;
+    std::map<std::string, std::string> fireflies;
     for (const auto& c : tableRows("lecture_notes/figures/failure-table.md")) {
         if (c.size() < 4 || c[2] == "slope" || c[2].find("---") != std::string::npos) continue;
         std::string m = c[1];
@@ -465,10 +466,12 @@ TEST_CASE("the slopes and biases the pages quote are the failure table's (make f
         else if (m.rfind("ir --vpls 16 --clamp", 0) == 0) m = "ir --clamp";
         else if (m != "nee --mis") m = m.substr(0, m.find(' '));
         cell[c[0] + "|" + m] = {c[2], c[3]};
+        fireflies[c[0] + "|" + m] = c[4];
     }
     REQUIRE(cell.size() == 156);  // 12 scenes x 13 methods, each row its own key
     auto slope = [&](const char* s, const char* m) { return cell.at(std::string(s) + "|" + m).first; };
     auto bias = [&](const char* s, const char* m) { return cell.at(std::string(s) + "|" + m).second; };
+    auto firefly = [&](const char* m) { return fireflies.at(std::string("cornell|") + m); };
     std::string p1 = flatPage("01-path-sampling-techniques.md"), p12 = flatPage("12-comparison-with-path-tracing.md"),
                 p14 = flatPage("14-power-versus-radiance.md"), p15 = flatPage("15-vertex-merging.md"),
                 a = flatPage("appendix-a-speed-and-accuracy.md");
@@ -489,7 +492,14 @@ TEST_CASE("the slopes and biases the pages quote are the failure table's (make f
                    bias("sds-ior1", "bdpt balance") + " and " + bias("sds-point", "bdpt balance") + " (slope " + slope("sds-ior1", "bdpt balance") +
                    " and " + slope("sds-point", "bdpt balance") + ")"},
         {&a, "lt on `cornell-point` (" + bias("cornell-point", "lt") + ", slope 0)"},
-        {&a, "(" + bias("cornell", "ir --clamp") + " on cornell, " + bias("indirect", "ir --clamp") + " on indirect"},
+        {&a, "(" + bias("cornell", "ir --clamp") + " on cornell, where at 4 s the noise still dominates, slope " + slope("cornell", "ir --clamp") +
+                 "; " + bias("indirect", "ir --clamp") + " on indirect"},
+        {&a, "from the ceiling, slope " + slope("indirect", "ir --clamp") + ")"},
+        {&a, "(cornell: mlt " + slope("cornell", "mlt") + ", mmlt " + slope("cornell", "mmlt") + ")"},
+        {&a, "has one of the smallest ratios (" + firefly("pt") + "), and ir, bdpt and nee, good elsewhere, ratios " +
+                 std::to_string(int(std::lround(std::stod(firefly("nee")) / std::stod(firefly("pt"))))) + " to " +
+                 std::to_string(int(std::lround(std::stod(firefly("ir")) / std::stod(firefly("pt"))))) + " times as large (" + firefly("ir") + ", " +
+                 firefly("bdpt balance") + " and " + firefly("nee") + ")"},
         {&a, "from " + bias("cornell-glass", "ir") + ", ir on cornell-glass, to " + bias("refraction", "ir") + ", ir on refraction"},
     };
     for (const auto& [page, quote] : quotes) {
