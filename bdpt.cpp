@@ -3744,8 +3744,10 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         std::remove(cl.out.c_str());
         return 1;
     }
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);  // a hundredth: the clock's noise is larger
     if (!cl.opt.quiet)
-        out << cl.scenePath << ": " << r.passes << " samples per pixel in " << r.seconds << " s, mean " << imageMean(r.image)
+        out << cl.scenePath << ": " << r.passes << " samples per pixel in " << seconds << " s, mean " << imageMean(r.image)
             << ", " << r.nonFinite << " non-finite samples dropped, " << raysPerSample(r) << "; wrote " << cl.out << " and " << pfm << "\n";
     if (!writeStrategyImages(r, cl.opt.strategyMaxLength, cl.strategiesDir, cl.opt.exposure, out)) {
         err << "bdpt: cannot write the strategy images into " << cl.strategiesDir << "/\n";
