@@ -3031,10 +3031,11 @@ inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
 // Each tile's label sits in a strip above it, never on the image: the lamp, row 1's whole
 // content, lies at the top of the frame.
 struct PyramidLayout {
-    int W, H, gap = 4, scale, strip, rowH, columns, canvasW, canvasH;
-    PyramidLayout(int width, int height, int maxLength, bool merges)
-        : W(width), H(height), scale(std::max(1, std::min(width / 40, height / 32))), strip(7 * scale), rowH(strip + H + gap),
-          columns(maxLength + 1 + merges), canvasW(columns * (W + gap) + gap), canvasH(maxLength * rowH + gap) {}
+    bool merges;  // vcm: a column "m k" of merges
+    int W, H, gap = 4, scale, strip, rowH, canvasW, canvasH;
+    PyramidLayout(int width, int height, int maxLength, bool withMerges)
+        : merges(withMerges), W(width), H(height), scale(std::max(1, std::min(width / 40, height / 32))), strip(7 * scale),
+          rowH(strip + H + gap), canvasW((maxLength + 1 + merges) * (W + gap) + gap), canvasH(maxLength * rowH + gap) {}
     int tileX(int k, int s, int maxLength) const { return gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap); }
     int tileY(int k) const { return gap + (k - 1) * rowH + strip; }
 };
@@ -3059,7 +3060,7 @@ inline std::string tileName(int k, int s) {  // "s1 t3", or "m k3" for the merge
 inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLength, float exposure, bool weighted,
                                                 const PyramidLayout& layout, const std::vector<int>& rowStops) {
     std::vector<unsigned char> canvas(size_t(layout.canvasW) * layout.canvasH * 3, 40);
-    forEachPyramidTile(maxLength, hasMergeImages(r, maxLength), [&](int k, int s, int index) {
+    forEachPyramidTile(maxLength, layout.merges, [&](int k, int s, int index) {
         std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * index + weighted], exposure + rowStops[k]);
         int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
         for (int y = 0; y < layout.H; ++y)
@@ -3073,12 +3074,11 @@ inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLe
 
 inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
     if (r.strategyImages.empty()) return true;
-    const bool merges = hasMergeImages(r, maxLength);
-    const PyramidLayout layout(r.image.width, r.image.height, maxLength, merges);
+    const PyramidLayout layout(r.image.width, r.image.height, maxLength, hasMergeImages(r, maxLength));
     const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
     bool ok = true;
     for (int weighted = 0; weighted < 2; ++weighted) {
-        forEachPyramidTile(maxLength, merges, [&](int k, int s, int index) {
+        forEachPyramidTile(maxLength, layout.merges, [&](int k, int s, int index) {
             std::string name = dir + (s == k + 1 ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(k + 1 - s)) +
                                (weighted ? "_weighted" : "_unweighted");
             ok = ok && writePNG(r.strategyImages[2 * index + weighted], name + ".png", exposure) &&

@@ -34,3 +34,34 @@ inline TwoSegmentPath twoSegmentPath(const Scene& scene, int lamp, const Surface
     t.valid = t.p[1] > 0;
     return t;
 }
+
+// Page 10's paths: x_0 the lamp's centre, x_1 what the camera sees through image row `row` of the
+// middle column, with the two factors of p_2 that change along a wall: the lamp's emission
+// cosine toward x_1 and the distance |x_1 - x_0|.
+struct RowPath {
+    TwoSegmentPath path;
+    int surface = -1;        // the shape x_1 lies on
+    double cosLamp = 0, distance = 0;
+};
+
+inline int lampShape(const Scene& scene) {
+    int lamp = -1;
+    for (size_t i = 0; i < scene.shapes.size(); ++i)
+        if (scene.shapes[i].light >= 0) lamp = int(i);
+    return lamp;
+}
+
+inline RowPath rowPath(const Scene& scene, int row) {
+    RowPath r;
+    int lamp = lampShape(scene);
+    Ray ray = cameraRay(scene.camera, 0.5f * scene.camera.width, row + 0.5f);
+    Hit hit = intersect(scene, ray);
+    if (!hit.found() || hit.shape == lamp) return r;
+    SurfacePoint x0 = sampleShapePoint(scene, lamp, 0.5f, 0.5f), x1 = surfaceAt(scene, ray, hit);
+    r.path = twoSegmentPath(scene, lamp, x0, x1);
+    r.surface = hit.shape;
+    Vec3 toX1 = x1.p - x0.p;
+    r.distance = length(toX1);
+    r.cosLamp = std::abs(dot(toX1, x0.ng)) / r.distance;
+    return r;
+}

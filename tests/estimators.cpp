@@ -15,32 +15,21 @@
 
 int main(int argc, char** argv) {
     Scene scene = loadScene("scenes/cornell.scene");
-    const Camera& cam = scene.camera;
-    int lamp = -1;
-    for (size_t i = 0; i < scene.shapes.size(); ++i)
-        if (scene.shapes[i].light >= 0) lamp = int(i);
-    SurfacePoint x0 = sampleShapePoint(scene, lamp, 0.5f, 0.5f);  // the lamp's centre
     std::vector<int> rows;
     for (int i = 1; i < argc; ++i) rows.push_back(std::atoi(argv[i]));
     if (rows.empty())
-        for (int y = 0; y < cam.height; ++y) rows.push_back(y);
+        for (int y = 0; y < scene.camera.height; ++y) rows.push_back(y);
     const char* surfaceNames[] = {"floor", "ceiling", "back-wall", "left-wall", "right-wall"};
     std::printf("# row surface pA pB pC wA wB wC max cos_lamp distance\n");
     for (int row : rows) {
-        Ray ray = cameraRay(cam, 0.5f * cam.width, row + 0.5f);
-        Hit hit = intersect(scene, ray);
-        if (!hit.found() || hit.shape == lamp) continue;
-        SurfacePoint x1 = surfaceAt(scene, ray, hit);
-        TwoSegmentPath path = twoSegmentPath(scene, lamp, x0, x1);
-        if (!path.valid) continue;
-        const double* p = path.p;
+        RowPath r = rowPath(scene, row);
+        if (!r.path.valid) continue;
+        const double* p = r.path.p;
         double largest = std::max({p[0], p[1], p[2]}), sum = p[0] + p[1] + p[2];
         int best = int(std::max_element(p, p + 3) - p);
-        Vec3 toX1 = x1.p - x0.p;
-        float distance = length(toX1);
-        std::printf("%d %s %.6g %.6g %.6g %.4f %.4f %.4f %c %.3f %.0f\n", row, hit.shape < 5 ? surfaceNames[hit.shape] : "block",
-                    p[0] / largest, p[1] / largest, p[2] / largest, p[0] / sum, p[1] / sum, p[2] / sum, "ABC"[best],
-                    std::abs(dot(toX1, x0.ng)) / distance, distance);
+        std::printf("%d %s %.6g %.6g %.6g %.4f %.4f %.4f %c %.3f %.0f\n", row, r.surface < 5 ? surfaceNames[r.surface] : "block",
+                    p[0] / largest, p[1] / largest, p[2] / largest, p[0] / sum, p[1] / sum, p[2] / sum, "ABC"[best], r.cosLamp,
+                    r.distance);
     }
     return 0;
 }
