@@ -3,10 +3,10 @@
 // (Realistic Image Synthesis; Slusallek, Myszkowski, Singh), side by side, in one file.
 //
 // Read it top to bottom with the slides open:
-//   1 math & random numbers   2 geometry            3 BVH                 4 materials (BSDFs)
-//   5 lights                  6 camera              7 scene file
-//   8 integrators: pt, nee, lt, ir, bdpt, and the slides' "later", vcm, mlt and mmlt
-//   9 film & rendering loop  10 command line
+//   1 math & random numbers   2 geometry            3 BVH (appendix B; skip it on a first read)
+//   4 materials (BSDFs)       5 lights              6 camera
+//   7 integrators: pt, nee, lt, ir, bdpt, and the slides' "later", vcm, mlt and mmlt
+//   8 film & rendering loop   9 scene file         10 command line
 // Units: radiance L, intensity I, power Phi, importance W_e. Directions point away from surfaces.
 // ============================================================================================
 #include <algorithm>
@@ -81,7 +81,7 @@ inline float sqr(float x) { return x * x; }
 // PCG32 (O'Neill): small state, good statistics, and independent streams, so every pixel and pass
 // gets its own generator and the image is the same whatever the number of threads.
 // Every number a method draws passes through Rng::uniform, the one place where Metropolis
-// sampling (section 8 (h)) can hand a walker the numbers of its chain's state instead.
+// sampling (section 7 (h)) can hand a walker the numbers of its chain's state instead.
 struct PrimaryStream;
 float replayUniform(PrimaryStream& stream);
 struct Rng {
@@ -93,8 +93,8 @@ struct Rng {
         uint32_t shifted = uint32_t(((old >> 18u) ^ old) >> 27u), rot = uint32_t(old >> 59u);
         return (shifted >> rot) | (shifted << ((-rot) & 31));
     }
-    // [0,1), 24 exact bits. Inlined always: with the replay branch GCC stopped inlining it, and
-    // bdpt's samples cost 1% more instructions (callgrind, cornell).
+    // [0,1), 24 exact bits. Inlined always: it is called for every number every method draws, and
+    // the replay branch makes it look too large to GCC's inliner.
     [[gnu::always_inline]] float uniform() { return replay ? replayUniform(*replay) : float(nextUint() >> 8) * 0x1p-24f; }
 };
 inline uint64_t mix64(uint64_t z) {  // SplitMix64 finaliser: decorrelates nearby seeds
@@ -136,6 +136,16 @@ inline Vec3 samplePowerCosine(float u1, float u2, float exponent) {  // pdf = (n
     return {sinT * std::cos(phi), sinT * std::sin(phi), cosT};
 }
 inline Vec3 reflect(Vec3 w, Vec3 n) { return 2 * dot(w, n) * n - w; }  // mirror w about n
+inline float luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }  // Rec. 709
+
+// The lecture's deliberate mistakes, all here: each flag is off by default, the physically right
+// rule, and where a rule is applied the right one is written first, the mistake as an override.
+struct Conventions {
+    bool fixedRayOffset = false;       // --fixed-ray-offset: push rays off by a rule of thumb (section 2)
+    bool symmetricRefraction = false;  // --symmetric-refraction: the eta^2 rule on the wrong side (section 4)
+    bool noAdjointCorrection = false;  // --no-adjoint-correction: light paths use the shading BSDF (section 4)
+    bool deltaDensityOne = false;      // --delta-density-one: pbrt's density of 1 after a delta event (bdpt)
+};
 
 // == 2. Geometry: spheres and parallelograms ===================================================
 // A ray is o + t d with t in (0, tmax). A hit point computed in floats lies off the surface by a
@@ -147,8 +157,8 @@ inline Vec3 reflect(Vec3 w, Vec3 n) { return 2 * dot(w, n) * n - w; }  // mirror
 // pushed the same way, so visibility is the same whichever side a method traces it from.
 // Why not a fixed rule of thumb like 5e-5 (1 + max|p|): it is absolute below |p| = 1 and
 // hundreds of ulps above, so it is far too large for small scenes and thin gaps. A lamp 0.5 mm
-// above a floor (tests/thin-gap.scene, lecture_notes/figures/thin-gap.png) then loses up to 16%
-// of its light in lt against pt, and methods disagree; with the bound all agree (tests).
+// above a floor (tests/thin-gap.scene, lecture_notes/figures/thin-gap.png) then loses part of its
+// light in lt but not in pt, and methods disagree; with the bound all agree (tests).
 struct Ray {
     Vec3 o, d;
     float tmax = kInf;
@@ -251,7 +261,7 @@ inline Vec3 shadingNormal(const Shape& s, Vec3 p, Vec3 ng) {
 //   quad:   q + a u + b v with (a,b) of p, error gamma_3 (|q| + |a u| + |b v|); (a,b) may be off,
 //           which moves the point along the surface only.
 // fixedOffset: the deliberate mistake --fixed-ray-offset, the bound replaced by 5e-5 (1 + max|p|).
-inline SurfacePoint makeSurfacePoint(const Shape& s, int shapeIndex, Vec3 p, bool fixedOffset = false) {
+inline SurfacePoint makeSurfacePoint(const Shape& s, int shapeIndex, Vec3 p, bool fixedOffset) {
     SurfacePoint sp;
     if (s.type == Shape::Sphere) {
         Vec3 local = p - s.p;
@@ -324,6 +334,8 @@ struct Camera {
 };
 
 // == 3. Acceleration: a wide BVH ===============================================================
+// Not a slide's topic but appendix B's: on a first read, skip to `struct Scene` at the end of this
+// section, whose intersect() and occluded() are all the methods ask of it.
 // Tracing a ray means finding the closest of N shapes; a bounding volume hierarchy makes that
 // about log N box tests instead of N shape tests.
 // Build: binned SAH. Split a set of shapes where the surface area heuristic
@@ -331,9 +343,9 @@ struct Camera {
 // is smallest, over 16 bins of centroid positions on each axis; split the child with the
 // largest area again until a node has W children (W = 4 with SSE, 8 with AVX). A leaf is one
 // shape, stored in leaf order: the node's W-wide box test then screens W shapes at once before
-// any exact test (on the 200k-shape stress scene 1.7x faster than leaves of up to 4 shapes, and
-// 2x faster than leaves of 4 tested with SIMD). There incoherent rays wait on memory, not on
-// arithmetic: with 10k shapes, in cache, this code outruns Embree (README: "Ray tracing: the BVH").
+// any exact test, and a shape's exact test reads only the little its kind needs. With many
+// shapes incoherent rays wait on memory, not on arithmetic, so bytes matter more than tests
+// (appendix B measures both choices; `make bench` races Embree on the same rays).
 // Traverse: each node keeps its W child boxes as structure-of-arrays (all min-x together, ...),
 // so one SIMD slab test checks all children. Closest hit visits children front to back and
 // skips any box farther than the hit found so far; any hit (shadow rays) stops at the first hit.
@@ -616,6 +628,8 @@ inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
     return hit;
 }
 
+// -- The scene, and the two queries every method makes of it: the closest hit along a ray, and
+// whether anything lies between two points (a shadow ray).
 struct Scene {
     std::string file;
     Camera camera;
@@ -626,11 +640,9 @@ struct Scene {
     float totalPower = 0;
     Bvh bvh;
     bool bruteForce = false;           // true: the plain loop over shapes, for tests and teaching
-    // Deliberate mistakes for the lecture (section 4): each defaults to the physically right rule.
-    bool adjointCorrection = true;     // false: --no-adjoint-correction
-    bool symmetricRefraction = false;  // true: --symmetric-refraction
-    bool fixedRayOffset = false;       // true: --fixed-ray-offset (section 2)
-    bool deltaDensityOne = false;      // true: --delta-density-one (section 8, bdpt's banner)
+    // Not from the file: the run's deliberate mistakes (section 1), kept beside the scene because
+    // the functions that apply them (BSDFs, hit points, subpath densities) all read the scene.
+    Conventions conventions;
     float exposure = 0;                // the PNG's default exposure in stops (--exposure overrides)
 };
 
@@ -653,6 +665,10 @@ inline void buildAcceleration(Scene& scene) { scene.bvh = buildBvh(scene.shapes)
 // Rays traced by this thread: what a sample costs, as the summary line reports it per method.
 struct RayCount {
     long long closest = 0, shadow = 0;
+    RayCount& operator+=(const RayCount& o) {
+        closest += o.closest, shadow += o.shadow;
+        return *this;
+    }
 };
 inline thread_local RayCount gRaysTraced;
 
@@ -665,7 +681,7 @@ inline bool occluded(const Scene& scene, const Ray& ray) {
     return scene.bruteForce ? occludedBruteForce(scene.shapes, ray) : traverseBvh<true>(scene.bvh, ray).found();
 }
 inline SurfacePoint surfaceAt(const Scene& scene, const Ray& ray, const Hit& hit) {
-    return makeSurfacePoint(scene.shapes[hit.shape], hit.shape, ray.o + hit.t * ray.d, scene.fixedRayOffset);
+    return makeSurfacePoint(scene.shapes[hit.shape], hit.shape, ray.o + hit.t * ray.d, scene.conventions.fixedRayOffset);
 }
 
 // == 4. Materials: BSDFs, and where transport stops being symmetric ===========================
@@ -674,7 +690,7 @@ inline SurfacePoint surfaceAt(const Scene& scene, const Ray& ray, const Hit& hit
 // Every query takes wo, the direction the path arrived from, and wi, the next direction. On a
 // camera path wo points toward the eye and radiance flows wi -> wo; on a light path wo points
 // toward the light and importance flows wi -> wo (light itself flows wo -> wi). evalBsdf gives
-// the factor a path vertex contributes, cosine included (evalBsdfCos: that factor alone):
+// the factor a path vertex contributes, cosine included:
 //   Radiance:    f(wo,wi) |wi.ns|
 //   Importance:  f(wi,wo) |wi.ns| * |wo.ns||wi.ng| / (|wo.ng||wi.ns|)      (Veach 1997, ch. 5)
 // The second factor is the adjoint of a shading-normal BSDF: the geometry term G(x,y) holds
@@ -690,7 +706,7 @@ enum class Transport { Radiance, Importance };
 
 struct BsdfSample {
     Vec3 wi;
-    Vec3 weight;       // evalBsdfCos / pdf; for a delta lobe, (f cos / delta) / probability
+    Vec3 weight;       // evalBsdf's f |cos| / pdf; for a delta lobe, (f cos / delta) / probability
     float pdf = 0;     // solid-angle density, or for delta lobes the discrete probability
     bool delta = false;
 };
@@ -711,7 +727,7 @@ inline float fresnelDielectric(float cosI, float eta) {
 inline Vec3 facingShadingNormal(const SurfacePoint& sp, Vec3 wo) { return dot(wo, sp.ng) >= 0 ? sp.ns : -sp.ns; }
 
 inline float adjointCorrection(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode) {
-    if (mode == Transport::Radiance || !scene.adjointCorrection || (sp.ns.x == sp.ng.x && sp.ns.y == sp.ng.y && sp.ns.z == sp.ng.z))
+    if (mode == Transport::Radiance || scene.conventions.noAdjointCorrection || (sp.ns.x == sp.ng.x && sp.ns.y == sp.ng.y && sp.ns.z == sp.ng.z))
         return 1;  // the last: no bump, the factor is 1 exactly
     float denom = absDot(wo, sp.ng) * absDot(wi, sp.ns);
     return denom == 0 ? 0 : absDot(wo, sp.ns) * absDot(wi, sp.ng) / denom;
@@ -742,18 +758,6 @@ inline Vec3 evalBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 w
         pdf = pdfReverse = (m.exponent + 1) / (2 * kPi) * lobe;
     }
     return m.albedo * (f * cosI * adjointCorrection(scene, sp, wo, wi, mode));
-}
-
-inline Vec3 evalBsdfCos(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode) {
-    float pdf, pdfReverse;
-    return evalBsdf(scene, sp, wo, wi, mode, pdf, pdfReverse);
-}
-
-// Solid-angle density with which sampleBsdf picks wi given wo (0 for delta lobes).
-inline float pdfBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi) {
-    float pdf, pdfReverse;
-    evalBsdf(scene, sp, wo, wi, Transport::Radiance, pdf, pdfReverse);
-    return pdf;
 }
 
 inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Transport mode, Rng& rng, BsdfSample& bs) {
@@ -794,11 +798,11 @@ inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Tran
     float cosT = std::sqrt(std::max(0.0f, 1 - eta * eta * (1 - cosO * cosO)));
     bs.wi = normalize(-eta * wo + (eta * cosO - cosT) * n);
     bs.pdf = 1 - F;
-    // Radiance flows wi -> wo: L_wo = (etaO/etaI)^2 L_wi. Importance carries no such factor. The
-    // deliberate mistake swaps the rules: eye tracing scales like power (as smallpt), particles
+    // Radiance flows wi -> wo: L_wo = (etaO/etaI)^2 L_wi. Importance carries no such factor.
+    float etaScale = mode == Transport::Radiance ? sqr(etaO / etaI) : 1;
+    // The deliberate mistake swaps the rules: eye tracing scales like power (as smallpt), particles
     // scale like radiance (a light tracer that reuses the radiance BTDF).
-    bool scaleAsRadiance = (mode == Transport::Radiance) != scene.symmetricRefraction;
-    float etaScale = !scaleAsRadiance ? 1 : mode == Transport::Radiance ? sqr(etaO / etaI) : sqr(etaI / etaO);
+    if (scene.conventions.symmetricRefraction) etaScale = mode == Transport::Radiance ? 1 : sqr(etaI / etaO);
     bs.weight = Vec3(etaScale * adjointCorrection(scene, sp, wo, bs.wi, mode));
     return dot(bs.wi, sp.ng) * dot(wo, sp.ng) < 0;
 }
@@ -831,7 +835,7 @@ inline int chooseLight(const Scene& scene, float u) {
 inline SurfacePoint sampleShapePoint(const Scene& scene, int shapeIndex, float u1, float u2) {
     const Shape& s = scene.shapes[shapeIndex];
     Vec3 p = s.type == Shape::Sphere ? s.p + s.radius * sampleUniformSphere(u1, u2) : s.p + u1 * s.u + u2 * s.v;
-    return makeSurfacePoint(s, shapeIndex, p, scene.fixedRayOffset);
+    return makeSurfacePoint(s, shapeIndex, p, scene.conventions.fixedRayOffset);
 }
 
 struct LightPoint {
@@ -901,7 +905,7 @@ inline EmissionSample sampleEmission(const Scene& scene, Rng& rng) {
 // is the importance that makes W_e cos / p_omega = 1 and integrates, with cos, to 1 over the
 // image. Normalized per pixel (area A / (width*height)), W_j = width*height / (A cos^4 theta)
 // inside pixel j: a camera sample then measures the pixel's mean radiance, and a light path
-// connected to the pinhole splats with this W_j (section 8).
+// connected to the pinhole splats with this W_j (section 7).
 // A uniform film coordinate in pixel x: x + u rounds up to x + 1 for large x and u near 1 (in
 // float, 16383 + 0.99999994 = 16384), which would lie outside the image; keep it below x + 1.
 inline float filmCoordinate(int x, float u) { return std::min(float(x) + u, std::nextafter(float(x + 1), 0.0f)); }
@@ -910,6 +914,17 @@ inline Ray cameraRay(const Camera& cam, float filmX, float filmY) {  // film coo
     float x = (2 * filmX / cam.width - 1) * cam.tanHalfFov * cam.aspect;
     float y = (1 - 2 * filmY / cam.height) * cam.tanHalfFov;
     return {cam.eye, normalize(cam.forward + x * cam.right + y * cam.up), kInf};
+}
+
+// A camera sample of pixel (x, y): a uniform point in it, its x drawn first (a braced list is
+// evaluated left to right), so that every method's pixel stream starts the same way.
+struct FilmPoint {
+    float x, y;
+};
+inline FilmPoint jitteredFilmPoint(int x, int y, Rng& rng) { return {filmCoordinate(x, rng.uniform()), filmCoordinate(y, rng.uniform())}; }
+inline Ray pixelRay(const Camera& cam, int x, int y, Rng& rng) {
+    FilmPoint f = jitteredFilmPoint(x, y, rng);
+    return cameraRay(cam, f.x, f.y);
 }
 
 // Where on the film the point p appears (false: behind the camera or outside the image).
@@ -944,7 +959,1873 @@ inline float pdfCameraDirection(const Camera& cam, Vec3 dir) {
     return 1 / (cam.imageArea * cosT * cosT * cosT);
 }
 
-// == 7. Scene file =============================================================================
+// --res: the same camera with another image size (the field of view spans the image's height).
+inline void setResolution(Camera& cam, int width, int height) {
+    cam.width = width;
+    cam.height = height;
+    cam.aspect = float(width) / height;
+    cam.imageArea = 4 * sqr(cam.tanHalfFov) * cam.aspect;
+}
+
+// == 7. Integrators ============================================================================
+// Slides "Path sampling techniques" and "Results from different techniques": panels (a) to (f),
+// then (g) "Vertex Connection and Merging (VCM, later)" and (h) "Metropolis-Sampling (see
+// later)". Every method is one function of the same shape over the shared pieces above, so that
+// a diff of two methods shows how they differ.
+// Paths are counted in bounces (scattering vertices): a path of k segments has k-1 bounces, and
+// --maxdepth D keeps paths with at most D bounces.
+enum class Method { PT, NEE, LT, IR, BDPT, VCM, MLT, MMLT };
+inline bool isMetropolis(Method m) { return m == Method::MLT || m == Method::MMLT; }  // section (h)
+// How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
+// Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
+// the depth limit. bdpt's banner says which it uses and why.
+enum class Roulette { Throughput, Albedo, Off };
+enum class Heuristic { Balance, Power, Max, Uniform };  // bdpt's MIS heuristics (its banner)
+
+struct RenderOptions {
+    Method method = Method::BDPT;
+    bool mis = false;          // nee: combine light and BSDF sampling (power heuristic)
+    int spp = 16;              // passes of one sample per pixel
+    double seconds = 0;        // > 0: render passes until this much time has passed
+    int threads = 0;           // 0: all cores
+    uint64_t seed = 1;
+    int maxDepth = 32;         // bounces
+    int rrStart = 3;           // Russian roulette from this many bounces on (Roulette::Throughput)
+    Roulette roulette = Roulette::Albedo;  // how lt, ir and bdpt end their subpaths (pt, nee: Throughput)
+    float exposure = 0;        // stops, for the PNG only
+    bool quiet = false;
+    int vplPaths = 16;         // ir: light paths traced per pass, each leaving VPLs
+    float clamp = 0;           // ir: > 0 bounds the geometry term G at this value
+    Heuristic heuristic = Heuristic::Balance;  // bdpt: how strategies are weighted
+    int strategyMaxLength = 0; // bdpt, vcm: > 0 records per-strategy images up to this path length
+    float mergeRadius = -1;    // vcm: r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
+    float alpha = 0.75f;       // vcm: r(n) = r_0 n^((alpha-1)/2) in pass n
+    float largeStep = 0.3f;    // mlt, mmlt: probability of a large step (every number afresh)
+    float sigma = 0.01f;       // mlt, mmlt: a small step's standard deviation, per number
+    int bootstrap = 0;         // mlt, mmlt: samples that estimate b and choose the chains' starts (0: bootstrapSamples)
+    int chains = 256;          // mlt, mmlt: Markov chains, each its own random stream
+    bool fixedStart = false;   // mlt, mmlt: the deliberate mistake, every chain from one state
+    // Called after each pass with that pass's image and the non-finite samples dropped so far.
+    std::function<void(int pass, const std::vector<Vec3>& passImage, long long nonFinite)> onPass;
+};
+
+struct Splat {                 // a light-path contribution that lands on some pixel
+    int pixel;
+    Vec3 value;
+};
+
+// What one image row's samples leave besides their pixels' values; rows are merged in order.
+struct StrategySplat {          // bdpt --strategies: a contribution to image `image`
+    int pixel;
+    Vec3 value;
+    int image;                 // 2 (s,t) index + (0 unweighted, 1 MIS-weighted)
+};
+
+struct RowOutput {
+    std::vector<Splat> splats;
+    std::vector<StrategySplat> strategySplats;
+    long long nonFinite = 0;
+    double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: what the clamp removed
+};
+
+// What a method prepared for the whole pass before its pixels: ir's virtual point lights, vcm's
+// light subpaths and grid, mlt's chains (section 8 makes them; the types come with each method).
+struct Vpl;
+struct VcmPass;
+struct MltPass;
+struct PassData {
+    int pass = 0;
+    const std::vector<Vpl>* vpls = nullptr;
+    const VcmPass* vcm = nullptr;
+    const MltPass* mlt = nullptr;
+};
+
+// Runs body(row, onCallingThread) for rows 0..rows-1 on `threads` threads (the calling one among
+// them: it alone may draw the progress bar); returns the rays they traced.
+inline RayCount parallelRows(int rows, int threads, const std::function<void(int, bool)>& body) {
+    std::atomic<int> nextRow{0};
+    std::atomic<long long> closest{0}, shadow{0};
+    std::atomic<bool> outOfMemory{false};
+    auto worker = [&](bool onCallingThread) {
+        RayCount before = gRaysTraced;
+        try {
+            for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y, onCallingThread);
+        } catch (const std::bad_alloc&) {  // thrown on, by the calling thread, once all have stopped
+            outOfMemory = true;
+            nextRow = rows;
+        }
+        closest += gRaysTraced.closest - before.closest;
+        shadow += gRaysTraced.shadow - before.shadow;
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, false);
+    worker(true);
+    for (std::thread& t : pool) t.join();
+    if (outOfMemory) throw std::bad_alloc();
+    return {closest.load(), shadow.load()};
+}
+
+
+// Russian roulette ("Path tracing with Russian roulette"): continue with probability q and divide
+// the throughput by q, so E[beta 1(u<q)/q] = beta: the estimator's mean is unchanged, only paths
+// that would contribute little are cut. For pt and nee (and --roulette throughput) q follows the
+// throughput relative to the path's start (a light path starts at Phi/p, a camera path at 1),
+// capped below 1 so that every path ends; lt, ir and bdpt use the albedo (bdpt's banner: why).
+inline bool russianRoulette(Vec3& beta, float startThroughput, int bounces, const RenderOptions& opt, Rng& rng) {
+    if (bounces < opt.rrStart) return true;
+    float q = std::min(0.95f, maxComponent(beta) / startThroughput);
+    if (!(rng.uniform() < q)) return false;
+    beta = beta / q;
+    return true;
+}
+
+inline float powerHeuristic(float pdfA, float pdfB) {  // Veach's power heuristic, beta = 2
+    float a = pdfA * pdfA, b = pdfB * pdfB;
+    return a + b == 0 ? 0 : a / (a + b);
+}
+
+// -- (a) pt: "unidirectional (eye tracing)". Only p_{k,0}: emission counts when a path happens to
+// hit an emitter, so a point light (nothing can hit it) stays black: "especially for point lights".
+inline Vec3 samplePT(const Scene& scene, const RenderOptions& opt, const PassData&, int x, int y, Rng& rng, RowOutput&) {
+    Ray ray = pixelRay(scene.camera, x, y, rng);
+    Vec3 L(0), beta(1);
+    for (int bounces = 0;; ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        SurfacePoint sp = surfaceAt(scene, ray, hit);
+        Vec3 wo = -ray.d;
+        L += beta * emittedRadiance(scene, sp, wo);
+        if (bounces >= opt.maxDepth) break;
+        BsdfSample bs;
+        if (!sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
+        beta *= bs.weight;
+        if (!russianRoulette(beta, 1, bounces, opt, rng)) break;
+        ray = spawnRay(sp, bs.wi);
+    }
+    return L;
+}
+
+// Next event: one light point y for the vertex x, contribution
+//   f(x) |cos_x| * Le(y->x) |cos_y| / |x-y|^2 * V(x,y) / p_A(y)     (G(x,y) split as in section 4)
+// With mis, weighted against the chance that BSDF sampling had found y (power heuristic).
+inline Vec3 estimateDirect(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Rng& rng, bool mis) {
+    LightPoint lp = sampleLightPoint(scene, rng);
+    Vec3 d = lp.sp.p - sp.p;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0)) return Vec3(0);
+    Vec3 wi = d / std::sqrt(dist2);
+    float cosLight = lp.deltaPosition ? 1 : dot(-wi, lp.sp.ng);
+    if (cosLight <= 0) return Vec3(0);  // the back of a one-sided emitter
+    float pdfBsdf, pdfReverse;
+    Vec3 f = evalBsdf(scene, sp, wo, wi, Transport::Radiance, pdfBsdf, pdfReverse);
+    if (isBlack(f) || occluded(scene, shadowRay(sp, lp.sp))) return Vec3(0);
+    Vec3 contribution = f * lp.emission * (cosLight / (dist2 * lp.pdfArea));
+    if (mis && !lp.deltaPosition) contribution *= powerHeuristic(lp.pdfArea * dist2 / cosLight, pdfBsdf);
+    return contribution;
+}
+
+// -- (b) nee: "unidirectional + next event". Uses p_{k,0} and p_{k,1}: at every non-specular vertex
+// a light point is connected. Without mis an emitter hit by a BSDF-sampled ray is counted only
+// after the camera or a specular bounce (where no light point could have been connected), so
+// that no path is counted twice ("make sure no path is counted multiple times, either!").
+inline Vec3 sampleNEE(const Scene& scene, const RenderOptions& opt, const PassData&, int x, int y, Rng& rng, RowOutput&) {
+    Ray ray = pixelRay(scene.camera, x, y, rng);
+    Vec3 L(0), beta(1);
+    bool afterDelta = true;   // the camera counts as a delta vertex
+    float pdfPrevBsdf = 0;    // solid-angle density of the BSDF sample that made this ray
+    Vec3 prevP = ray.o;       // the vertex that ray left (not its pushed-off origin)
+    for (int bounces = 0;; ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        SurfacePoint sp = surfaceAt(scene, ray, hit);
+        Vec3 wo = -ray.d;
+        Vec3 Le = emittedRadiance(scene, sp, wo);
+        if (!isBlack(Le)) {
+            if (afterDelta) {
+                L += beta * Le;
+            } else if (opt.mis) {  // the distance between the vertices, as estimateDirect's weight has it
+                Vec3 d = prevP - sp.p;
+                float dist2 = dot(d, d), pdfLight = pdfLightPoint(scene, sp.shape) * dist2 * std::sqrt(dist2) / dot(d, sp.ng);
+                L += beta * Le * powerHeuristic(pdfPrevBsdf, pdfLight);
+            }
+        }
+        if (bounces >= opt.maxDepth) break;
+        const Material& m = scene.materials[scene.shapes[sp.shape].material];
+        if (!isSpecular(m)) L += beta * estimateDirect(scene, sp, wo, rng, opt.mis);
+        BsdfSample bs;
+        if (!sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
+        afterDelta = bs.delta;
+        pdfPrevBsdf = bs.pdf;
+        beta *= bs.weight;
+        if (!russianRoulette(beta, 1, bounces, opt, rng)) break;
+        ray = spawnRay(sp, bs.wi);
+        prevP = sp.p;
+    }
+    return L;
+}
+
+// -- The camera connection shared by light tracing and BDPT's t=1 strategy. For a point x seen
+// by the pinhole, W_j(x->eye) G(x,eye) with the camera-side cosine: W_j cos_cam / d^2, divided by
+// the number of light paths per pass (one per pixel, so the W*H in W_j cancels it; forgetting
+// either is light tracing's classic bug, pbrt-v4 #347 and #456). The scene-side cosine stays
+// with the caller (section 4).
+struct CameraConnection {
+    int pixel = -1;          // -1: behind the camera, outside the image, or occluded
+    Vec3 toCamera;           // unit direction from x to the pinhole
+    float importance = 0;    // W_j cos_cam / (d^2 N_lightpaths)
+};
+
+inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& x) {
+    CameraConnection c;
+    const Camera& cam = scene.camera;
+    float fx, fy;
+    if (!projectToFilm(cam, x.p, fx, fy)) return c;
+    Vec3 d = cam.eye - x.p;
+    float dist2 = dot(d, d);
+    c.toCamera = d / std::sqrt(dist2);
+    float cosCamera = dot(-c.toCamera, cam.forward);
+    float lightPathsPerPass = float(cam.width) * cam.height;
+    c.importance = pixelImportance(cam, -c.toCamera) * cosCamera / (dist2 * lightPathsPerPass);
+    SurfacePoint eye;  // no surface: ng = 0
+    eye.p = cam.eye;
+    if (occluded(scene, shadowRay(x, eye))) return c;
+    c.pixel = std::min(int(fy), cam.height - 1) * cam.width + std::min(int(fx), cam.width - 1);
+    return c;
+}
+
+// -- Subpaths, shared by lt, ir and bdpt (slides: "Generating light paths", "Extension of paths
+// at hit points"). A subpath is a list of vertices, each with the throughput beta that reached it;
+// a connection joins a light-side vertex y to a camera-side vertex x and multiplies the one
+// factor G f f of T(pi) that neither side sampled: both scattering factors (their cosines
+// included, section 4) and 1/d^2; V is a shadow ray. Light tracing is the connection to the
+// pinhole (t = 1) alone, instant radiosity the connection of one camera vertex to stored light
+// vertices, bdpt every connection.
+struct PathVertex {
+    enum Type { Camera, Light, Surface } type = Surface;
+    SurfacePoint sp;        // p and ng for every type; sp.shape < 0 for the pinhole and point lights
+    Vec3 wo;                // surface: unit vector toward the previous vertex of its own subpath
+    float prevDist2 = 0;    // squared distance to that vertex
+    Vec3 beta;              // subpath throughput up to this vertex (light: Le/p_A or I/P(light))
+    double pdfFwd = 0, pdfRev = 0; // area densities for bdpt's MIS (see its banner below)
+    bool delta = false;          // a delta BSDF was sampled here
+    bool deltaPosition = false;  // the pinhole, a point light
+    int light = -1;              // the light y_0 was sampled on
+    float continuation = 1;      // Roulette::Albedo: probability that a walk goes on from here
+};
+
+// Roulette::Albedo's continuation probability at a surface: its material's largest albedo
+// (SmallVCM's ContinuationProb). It depends on the vertex alone, not on the direction or on the
+// subpath's throughput, so both walks through the vertex have it, and MIS can count it in
+// pdfFwd and pdfRev alike; a throughput-relative q would depend on the other, unknown, subpath.
+inline float albedoContinuation(const Scene& scene, const SurfacePoint& sp) {
+    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    return m.type == Material::Glass ? 1.0f : std::min(1.0f, maxComponent(m.albedo));
+}
+
+// The cosine a density picks up at a vertex hit from direction w: |cos| on surfaces and area
+// lights, 1 at the pinhole and at point lights (no surface).
+inline float cosAt(const PathVertex& v, Vec3 w) {
+    return v.type == PathVertex::Surface || (v.type == PathVertex::Light && !v.deltaPosition) ? absDot(v.sp.ng, w) : 1;
+}
+
+// The emission direction density at a light vertex (or a surface that emits): cos/pi, front only.
+inline float pdfEmissionDirection(const PathVertex& light, Vec3 w) {
+    if (light.deltaPosition) return 1 / (4 * kPi);
+    return std::max(0.0f, dot(light.sp.ng, w)) / kPi;
+}
+
+// A vertex v looking along the unit direction w (away from v): the factor it multiplies into a
+// connection, its cosine included (section 4; 1 at the pinhole, whose W is connectToCamera's),
+// and two solid-angle densities: of sampling w having arrived along v.wo (pdf), and of sampling
+// v.wo having arrived along w (pdfReverse; surfaces only). MIS needs both at each end.
+inline Vec3 evalVertex(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
+    pdfReverse = 0;
+    if (v.type == PathVertex::Camera) {
+        pdf = pdfCameraDirection(scene.camera, w);
+        return Vec3(1);
+    }
+    if (v.type == PathVertex::Light) {
+        pdf = pdfEmissionDirection(v, w);
+        return Vec3(v.deltaPosition ? 1 : std::max(0.0f, dot(v.sp.ng, w)));
+    }
+    return evalBsdf(scene, v.sp, v.wo, w, mode, pdf, pdfReverse);
+}
+
+// A solid-angle density as an area density at the vertex `next`, a distance^2 away along w:
+// p_A = p_omega |cos_next| / d^2.
+inline double toArea(double pdfOmega, const PathVertex& next, Vec3 w, float dist2) { return pdfOmega * cosAt(next, w) / dist2; }
+
+// The density, up to the delta itself, with which a specular vertex sends its subpath along the
+// unit direction w (away from the vertex): eta_w^2 |w . ns|, eta_w the index on w's side. Mirrors
+// and Snell's law keep the etendue eta^2 |cos| d omega (about the normal the event used), so the
+// delta is one in that measure whichever way a strategy crosses the vertex, and cancels; this
+// factor does not (bdpt's banner, section 7: why it matters).
+inline float specularDensity(const Scene& scene, const SurfacePoint& sp, Vec3 w) {
+    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    float eta = m.type == Material::Glass && dot(w, sp.ng) < 0 ? m.ior : 1;  // the back side is inside
+    return sqr(eta) * absDot(w, sp.ns);
+}
+
+// The two solid-angle densities at a subpath vertex v whose subpath moved on along w: of sampling
+// w (having arrived along v.wo) and of sampling v.wo having arrived along w. A delta event's are
+// specularDensity's, every other vertex's evalVertex's.
+inline void scatteringDensities(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
+    if (!v.delta) {
+        evalVertex(scene, v, w, mode, pdf, pdfReverse);
+        return;
+    }
+    pdf = specularDensity(scene, v.sp, w);
+    pdfReverse = specularDensity(scene, v.sp, v.wo);
+}
+
+// Adds v, reached from path.back(), to a subpath: v's pdfFwd and the pdfRev of the vertex before
+// path.back(), both evaluated on the vertices' positions (not on the sampled direction, which
+// leaves from an offset origin), so that every strategy's density of one path is computed on the
+// same geometry. Each carries the continuation probability of the vertex it was sampled at.
+inline void appendVertex(const Scene& scene, std::vector<PathVertex>& path, const PathVertex& vertex, Transport mode) {
+    path.push_back(vertex);
+    const size_t i = path.size() - 1;
+    PathVertex& v = path[i];
+    const PathVertex& prev = path[i - 1];
+    float pdf, pdfReverse;
+    scatteringDensities(scene, prev, -v.wo, mode, pdf, pdfReverse);
+    v.pdfFwd = toArea(pdf * prev.continuation, v, v.wo, v.prevDist2);
+    if (i >= 2) path[i - 2].pdfRev = toArea(pdfReverse * prev.continuation, path[i - 2], prev.wo, prev.prevDist2);
+    if (prev.delta && scene.conventions.deltaDensityOne) {  // the deliberate mistake: pbrt's area density of 1
+        v.pdfFwd = prev.continuation;
+        if (i >= 2) path[i - 2].pdfRev = prev.continuation;
+    }
+}
+
+// Extends a subpath by BSDF sampling, each new vertex by appendVertex.
+inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Vec3 beta, int maxSurfaceVertices,
+                       Transport mode, Rng& rng, std::vector<PathVertex>& path) {
+    const float start = maxComponent(beta);  // Russian roulette follows the throughput relative to it
+    for (int bounces = 0; bounces < maxSurfaceVertices; ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) return;
+        PathVertex v;
+        v.sp = surfaceAt(scene, ray, hit);
+        v.beta = beta;
+        Vec3 d = path.back().sp.p - v.sp.p;
+        v.prevDist2 = dot(d, d);
+        if (!(v.prevDist2 > 0)) return;
+        v.wo = d / std::sqrt(v.prevDist2);
+        if (opt.roulette == Roulette::Albedo) v.continuation = albedoContinuation(scene, v.sp);
+        appendVertex(scene, path, v, mode);
+        if (bounces + 1 == maxSurfaceVertices) return;
+        BsdfSample bs;
+        if (!sampleBsdf(scene, v.sp, v.wo, mode, rng, bs)) return;
+        path.back().delta = bs.delta;
+        beta *= bs.weight;
+        if (opt.roulette == Roulette::Albedo) {
+            if (!(rng.uniform() < v.continuation)) return;
+            beta = beta / v.continuation;
+        } else if (opt.roulette == Roulette::Throughput && !russianRoulette(beta, start, bounces, opt, rng)) {
+            return;  // bounces so far, as in radianceNEE
+        }
+        ray = spawnRay(v.sp, bs.wi);
+    }
+}
+
+// Subpaths of up to --maxdepth bounces, or (mmlt) of exactly `vertices` vertices where they survive.
+inline void cameraSubpath(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, Rng& rng,
+                          std::vector<PathVertex>& path, int vertices = 0) {
+    path.clear();
+    PathVertex z0;
+    z0.type = PathVertex::Camera;
+    z0.sp.p = scene.camera.eye;
+    z0.beta = Vec3(1);  // W_j cos / p = 1 for a pixel sample
+    z0.pdfFwd = 1;
+    z0.deltaPosition = true;  // never hit (no t = 0 strategy), but connected to: not a delta BSDF
+    path.push_back(z0);
+    Ray ray = cameraRay(scene.camera, filmX, filmY);
+    randomWalk(scene, opt, ray, Vec3(1), vertices > 0 ? vertices - 1 : opt.maxDepth + 1, Transport::Radiance, rng, path);
+}
+
+// y_0: a point sampled on a light, its throughput Le/p_A (or I/P(light)) and density p_A.
+inline PathVertex lightVertex(const LightPoint& lp) {
+    PathVertex y0;
+    y0.type = PathVertex::Light;
+    y0.sp = lp.sp;
+    y0.light = lp.light;
+    y0.beta = lp.emission / lp.pdfArea;
+    y0.pdfFwd = lp.pdfArea;
+    y0.deltaPosition = lp.deltaPosition;
+    return y0;
+}
+
+inline void lightSubpath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<PathVertex>& path, int vertices = 0) {
+    path.clear();
+    EmissionSample es = sampleEmission(scene, rng);
+    path.push_back(lightVertex(es.point));
+    const PathVertex& y0 = path[0];
+    if (isBlack(es.weight)) return;
+    Ray ray = es.point.deltaPosition ? Ray{y0.sp.p, es.dir, kInf} : spawnRay(y0.sp, es.dir);
+    randomWalk(scene, opt, ray, es.weight, vertices > 0 ? vertices - 1 : opt.maxDepth, Transport::Importance, rng, path);
+}
+
+// Mirrors and glass cannot be connected to: the direction is fixed by the other vertex.
+inline bool connectable(const Scene& scene, const PathVertex& v) {
+    return v.type != PathVertex::Surface || !isSpecular(scene.materials[scene.shapes[v.sp.shape].material]);
+}
+
+// A light-side vertex seen through the pinhole (the t = 1 connection); pixel -1 if it is not seen.
+inline Vec3 connectToPinhole(const Scene& scene, const PathVertex& y, int& pixel) {
+    CameraConnection c = connectToCamera(scene, y.sp);
+    pixel = c.pixel;
+    if (c.pixel < 0) return Vec3(0);
+    float pdf, pdfReverse;
+    return y.beta * evalVertex(scene, y, c.toCamera, Transport::Importance, pdf, pdfReverse) * c.importance;
+}
+
+// The segment from a light-side vertex y to a camera-side vertex x, both ends evaluated toward
+// each other by evalVertex (the camera side is skipped when y already contributes nothing).
+struct Connection {
+    Vec3 w;           // unit, from y to x
+    float dist2 = 0;
+    Vec3 fy, fx;
+    float pdfY = 0, pdfYReverse = 0, pdfX = 0, pdfXReverse = 0;
+};
+
+inline void evalConnection(const Scene& scene, const PathVertex& y, const PathVertex& x, Connection& c) {
+    Vec3 d = x.sp.p - y.sp.p;
+    c.dist2 = dot(d, d);
+    if (!(c.dist2 > 0)) return;
+    c.w = d / std::sqrt(c.dist2);
+    c.fy = evalVertex(scene, y, c.w, Transport::Importance, c.pdfY, c.pdfYReverse);
+    if (!isBlack(c.fy)) c.fx = evalVertex(scene, x, -c.w, Transport::Radiance, c.pdfX, c.pdfXReverse);
+}
+
+// Light-side vertex y joined to camera-side vertex x, before the visibility test.
+inline Vec3 connectVertices(const PathVertex& y, const PathVertex& x, const Connection& c) {
+    return c.dist2 > 0 ? y.beta * c.fy * c.fx * x.beta / c.dist2 : Vec3(0);
+}
+
+inline bool mutuallyVisible(const Scene& scene, const PathVertex& a, const PathVertex& b) {
+    return !occluded(scene, shadowRay(a.sp, b.sp));
+}
+
+// -- (c) lt: "next event (light tracing)". Paths start on the lights with p(x,Theta) = Le|cos|/Phi
+// and every vertex is connected to the pinhole (p_{k,k}... the strategies with one camera
+// vertex). Importance flows here, so BSDFs are sampled in Transport::Importance. It renders the
+// floor caustic under the glass sphere (light -> glass -> floor -> eye) that eye paths find only
+// by hitting the light after the refraction (pt, nee: noisy) and never for a point light: no
+// connection can pass through glass, but a light path goes through it by sampling alone.
+// The pixel's stream traces one light path; what reaches the pixel itself comes as splats too.
+inline Vec3 sampleLT(const Scene& scene, const RenderOptions& opt, const PassData&, int, int, Rng& rng, RowOutput& out) {
+    thread_local std::vector<PathVertex> light;
+    lightSubpath(scene, opt, rng, light);
+    for (const PathVertex& y : light) {
+        int pixel = -1;
+        Vec3 c = connectable(scene, y) ? connectToPinhole(scene, y, pixel) : Vec3(0);
+        if (pixel >= 0) out.splats.push_back({pixel, c});
+    }
+    return Vec3(0);
+}
+
+// -- (d), (e) ir: "instant radiosity" (Keller 1997), "(clamped)". A few light paths leave virtual
+// point lights (VPLs) at their non-specular vertices; the first non-specular vertex x of a camera
+// path gathers from all of them:
+//   sum_VPL  beta_y / N  f_y(y->x) f_x(y->x->eye) G(x,y) V(x,y)
+// Unbiased for the paths it can make, but G = cos cos / d^2 is unbounded where x and y come close
+// (corners): the bright splotches of panel (d). --clamp C replaces G by min(G, C): panel (e),
+// smooth but darker, and the loss does not shrink with more passes (bias; the same 1/d^2 was
+// pbrt-v3 #73).
+struct Vpl {
+    PathVertex y;       // a light-subpath vertex, its beta divided by the number of VPL paths
+    int bounces = 0;    // scattering vertices before y on its light path
+};
+
+inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, int pass) {
+    std::vector<Vpl> vpls;
+    std::vector<PathVertex> path;
+    for (int i = 0; i < opt.vplPaths; ++i) {
+        Rng rng = makeRng(opt.seed ^ 0x5bd1e995ULL, uint64_t(i), uint64_t(pass));
+        lightSubpath(scene, opt, rng, path);
+        for (size_t k = 0; k < path.size(); ++k) {
+            if (!connectable(scene, path[k])) continue;
+            vpls.push_back({path[k], int(k)});
+            vpls.back().y.beta = path[k].beta / float(opt.vplPaths);
+        }
+    }
+    return vpls;
+}
+
+inline Vec3 gatherVpls(const Scene& scene, const RenderOptions& opt, const std::vector<Vpl>& vpls, const PathVertex& x,
+                       int cameraBounces, RowOutput& out) {
+    Vec3 sum(0);
+    for (const Vpl& v : vpls) {
+        if (v.bounces + cameraBounces + 1 > opt.maxDepth) continue;
+        Connection k;
+        evalConnection(scene, v.y, x, k);
+        Vec3 c = connectVertices(v.y, x, k);
+        if (isBlack(c) || !mutuallyVisible(scene, v.y, x)) continue;
+        if (opt.clamp > 0) {
+            float G = absDot(k.w, x.sp.ng) * cosAt(v.y, k.w) / k.dist2;
+            double before = average(c);
+            if (G > opt.clamp) c *= opt.clamp / G;
+            out.energyUnclamped += before;
+            out.energyClamped += average(c);
+        }
+        sum += c;
+    }
+    return sum;
+}
+
+// The camera half of ir: follow specular bounces, gather at the first non-specular vertex.
+inline Vec3 sampleIR(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
+    Ray ray = pixelRay(scene.camera, x, y, rng);
+    Vec3 L(0), beta(1);
+    for (int bounces = 0; bounces <= opt.maxDepth; ++bounces) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        PathVertex z;  // a camera subpath's vertex
+        z.sp = surfaceAt(scene, ray, hit);
+        z.wo = -ray.d;
+        z.beta = Vec3(1);
+        L += beta * emittedRadiance(scene, z.sp, z.wo);
+        if (connectable(scene, z)) return L + beta * gatherVpls(scene, opt, *pass.vpls, z, bounces, out);
+        BsdfSample bs;
+        if (bounces == opt.maxDepth || !sampleBsdf(scene, z.sp, z.wo, Transport::Radiance, rng, bs)) break;
+        beta *= bs.weight;
+        ray = spawnRay(z.sp, bs.wi);
+    }
+    return L;
+}
+
+// -- (f) bdpt: "bidirectional path tracing" (Lafortune & Willems 1993; Veach & Guibas 1995).
+// One camera subpath z_0..z_{t-1} (z_0 the pinhole) and one light subpath y_0..y_{s-1} (y_0 on a
+// light) per sample; every pair is connected, which makes the path x_0..x_k = y_0..y_{s-1}
+// z_{t-1}..z_0 of k = s+t-1 segments with the strategy the slides call p_{k,s} ("m vertices
+// from the light"): s = 0 the camera path hits an emitter, s = 1 next event, t = 1 light
+// tracing, the rest "connect paths deterministically (every pair of two hit points)". Each
+// strategy alone is unbiased for the paths it can make; MIS combines them: C = sum w_ij C_ij.
+//
+// The weights are computed pbrt-style: every vertex stores pdfFwd, the area density with which
+// its own subpath sampled it, and pdfRev, the density with which the other side would have. On
+// the path x_0..x_k (x_0 on the light), strategy s samples x_0..x_{s-1} from the light and
+// x_s..x_k from the camera; strategy s+1 differs only in x_s, which changes sides:
+//     p_{s+1}/p_s = pdfRev(x_s) / pdfFwd(x_s),   (x_s's own subpath sampled it with pdfFwd)
+// and likewise p_{s-1}/p_s = pdfRev(x_{s-1}) / pdfFwd(x_{s-1}) on the light side. So
+// r_i = p_i/p_s costs one multiplication per vertex, and a heuristic maps the r_i to w_s:
+//     balance w_s = 1/(1 + sum r_i)   power w_s = 1/(1 + sum r_i^2)   (Veach ch. 9)
+//     max     w_s = 1 if no r_i > 1   (the slides' "choose p_X(pi) maximum"; ties, to 1e-4, share)
+//     uniform w_s = 1/(1 + #{r_i > 0})   (every strategy able to make the path, equally)
+// Each factor of the walk is a density one can point at on the slide, and one walk serves all
+// four heuristics and vcm's merges (section (g): one more term per vertex). Its O(k) per
+// connection is a few percent of a sample, whose cost is its rays; SmallVCM's recursion, which
+// caches the part of the walk beyond the connection in each subpath, is page 10's exercise.
+// A strategy that would have to connect at a delta vertex (mirror, glass) or hit a point light is
+// skipped: its density is 0 (counting it gave single huge fireflies in Mitsuba #132, pbrt-v4 #326
+// and SmallVCM #5). Every other strategy crosses a specular vertex x_j inside one subpath,
+// sampling x_{j+1} from x_j or x_{j-1} from x_j: the delta cancels between strategies, the
+// geometry around it does not. The delta is one in the measure eta^2 |cos| d omega, which
+// mirrors and Snell's law keep (etendue), the same whichever way a strategy crosses x_j; left in
+// pdfFwd and pdfRev are eta^2 |cos| at x_j (specularDensity) and the |cos|/d^2 of the conversion
+// to area at the next vertex. Through a chain a S..S b between non-specular a and b the chain's
+// Jacobians cancel too, and the two directions' densities stand as
+//     p(a ... b) / p(b ... a) = [p_omega(a) / (eta_a^2 |cos_a|)] / [p_omega(b) / (eta_b^2 |cos_b|)].
+// pbrt stores the density after a delta event as an area density of 1 (--delta-density-one
+// restores it), which drops the |cos|/d^2 at the vertex after it: for a caustic on a floor
+// millimetres below a glass ball that 1/d^2 is huge, and pbrt's convention hands the caustic to
+// the noisy s = 0 instead of light tracing (notes, page 7; tests `specular chains` and `a caustic
+// seen directly`). The walk is in double: near corners, with sharp lobes, one density can be
+// 1e-31 and another 1e+8, beyond float's range.
+// Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues
+// from a surface vertex with q = the material's albedo (albedoContinuation), so every density
+// sampled there, pdfFwd of the next vertex and pdfRev of the one before, carries that q, and the
+// strategy whose subpath survived more roulette gets less weight. A throughput-relative q (pt's)
+// cannot be counted so: the other subpath's q at a vertex depends on its unknown throughput.
+// Appendix A compares the three rules (`build/efficiency --alternatives`): albedo roulette costs
+// least per sample and is the most efficient on every scene there.
+// A subpath, or the first vertices of one: bdpt's own vectors, and vcm's light subpaths, which
+// lie one after another in arrays shared by the whole pass.
+struct Subpath {
+    const PathVertex* v = nullptr;
+    int n = 0;
+    Subpath() = default;
+    Subpath(const PathVertex* first, int count) : v(first), n(count) {}
+    Subpath(const std::vector<PathVertex>& path) : v(path.data()), n(int(path.size())) {}
+    const PathVertex& operator[](int i) const { return v[i]; }
+    int size() const { return n; }
+};
+
+inline double misPower(Heuristic heuristic, double r) {  // what each r_i adds to the sum
+    return heuristic == Heuristic::Power ? r * r : heuristic == Heuristic::Uniform ? 1.0 : r;
+}
+
+// pdfRev/pdfFwd of a vertex changing sides. pdfFwd is > 0 for every vertex a subpath sampled; a 0
+// (a cosine of exactly 0) makes the other strategies' densities 0 relative to it, not infinite.
+inline double densityRatio(double pdfRev, double pdfFwd) { return pdfFwd > 0 ? pdfRev / pdfFwd : 0; }
+
+// Where the two subpaths meet, the reverse densities of the (up to) four vertices next to the
+// junction are not the stored ones: pt = camera[t-1], qs = light[s-1] and the one before each.
+struct Junction {
+    double ptRev = 0, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
+    bool lightEndDelta = false;  // a merge: light[s-1] sampled its way to the merged vertex
+};
+
+// The junction of strategy (s,t): the connection c joins qs and pt (unused for s = 0).
+inline Junction connectionJunction(const Scene& scene, Subpath light, int s, Subpath camera, int t, const Connection& c) {
+    Junction j;
+    const PathVertex &pt = camera[t - 1], *ptMinus = t > 1 ? &camera[t - 2] : nullptr;
+    if (s > 0) {  // each density sampled at a connection vertex carries that vertex's continuation
+        const PathVertex &qs = light[s - 1], *qsMinus = s > 1 ? &light[s - 2] : nullptr;
+        j.ptRev = t > 1 ? toArea(c.pdfY * qs.continuation, pt, c.w, c.dist2) : 0;  // the pinhole is never sampled (no t = 0)
+        j.qsRev = toArea(c.pdfX * pt.continuation, qs, c.w, c.dist2);
+        if (qsMinus) j.qsMinusRev = toArea(c.pdfYReverse * qs.continuation, *qsMinus, qs.wo, qs.prevDist2);
+        if (ptMinus) j.ptMinusRev = toArea(c.pdfXReverse * pt.continuation, *ptMinus, pt.wo, pt.prevDist2);
+    } else {  // pt lies on an emitter: how a light path would have started there
+        j.ptRev = pdfLightPoint(scene, pt.sp.shape);
+        if (ptMinus) j.ptMinusRev = toArea(pdfEmissionDirection(pt, pt.wo), *ptMinus, pt.wo, pt.prevDist2);
+    }
+    return j;
+}
+
+// The strategies able to make one path, each added as p_i / p_ref (p_ref: the density of the
+// strategy being weighted), and that strategy's weight w = misPower(1) / sum_i misPower(p_i/p_ref),
+// itself included; for the max heuristic 1 / #ties if no p_i is larger. Two strategies of equal
+// density (common in symmetric scenes) computed in different orders can each see the other as
+// larger by a rounding error: within 1e-4 they count as equal and share the path.
+struct MisSum {
+    Heuristic heuristic;
+    double reference;
+    double sum = 0;
+    int larger = 0, equal = 0;
+    void add(double p) {
+        constexpr double kTie = 1e-4;
+        if (heuristic != Heuristic::Max) {
+            sum += misPower(heuristic, p / reference);
+            return;
+        }
+        larger += p > reference * (1 + kTie);
+        equal += std::fabs(p - reference) <= reference * kTie;
+    }
+    float weight() const {
+        if (heuristic == Heuristic::Max) return larger || equal == 0 ? 0 : 1.0f / equal;
+        return sum > 0 ? float(1 / sum) : 0;
+    }
+};
+
+// The walk: adds to m every other strategy able to make the path light[0..s-1] + camera[t-1..0]
+// met at `j`, relative to p_{s,t}. The strategy that moves vertex x to the other side multiplies
+// the density by pdfRev(x)/pdfFwd(x). Merges (mergeEta > 0, vcm): the merge at x, once x has
+// moved to the camera side (light side), has the density p * mergeEta * pdfFwd(x), with its own
+// subpath's pdfFwd.
+inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta, const Junction& j, MisSum& m) {
+    auto cameraRev = [&](int i) { return i == t - 1 ? j.ptRev : i == t - 2 ? j.ptMinusRev : camera[i].pdfRev; };
+    auto lightRev = [&](int i) { return i == s - 1 ? j.qsRev : i == s - 2 ? j.qsMinusRev : light[i].pdfRev; };
+    // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
+    auto cameraDelta = [&](int i) { return i != t - 1 && camera[i].delta; };
+    auto lightDelta = [&](int i) { return (i != s - 1 || j.lightEndDelta) && light[i].delta; };
+    double r = 1;
+    for (int i = t - 1; i > 0; --i) {  // more light vertices: strategies (s+1, t-1), ...
+        r *= densityRatio(cameraRev(i), camera[i].pdfFwd);
+        if (!cameraDelta(i) && !cameraDelta(i - 1)) m.add(r);
+        bool becomesLightVertex0 = s == 0 && i == t - 1;  // the light's own vertex is not merged
+        if (mergeEta > 0 && !cameraDelta(i) && !becomesLightVertex0) m.add(r * mergeEta * camera[i].pdfFwd);
+    }
+    r = 1;
+    for (int i = s - 1; i >= 0; --i) {  // more camera vertices: strategies (s-1, t+1), ...
+        r *= densityRatio(lightRev(i), light[i].pdfFwd);
+        bool deltaBefore = i > 0 ? lightDelta(i - 1) : light[0].deltaPosition;
+        if (!lightDelta(i) && !deltaBefore) m.add(r);
+        if (mergeEta > 0 && i > 0 && !lightDelta(i)) m.add(r * mergeEta * light[i].pdfFwd);
+    }
+}
+
+// w_{s,t} for the path that strategy (s,t) made from light[0..s-1] and camera[0..t-1], joined by
+// the connection c (unused for s = 0); vcm passes its mergeEta, bdpt 0.
+// The light seen directly (k = 1) is left to s = 0, as in pbrt: (1,1) gets weight 0, so a point
+// light stays invisible to the camera in bdpt as in pt and nee (lt shows it as one bright pixel).
+inline float misWeight(const Scene& scene, Subpath light, int s, Subpath camera, int t, Heuristic heuristic, const Connection& c,
+                       double mergeEta) {
+    if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
+    MisSum m{heuristic, 1};
+    m.add(1);  // (s,t) itself
+    misWalk(light, s, camera, t, mergeEta, connectionJunction(scene, light, s, camera, t, c), m);
+    return m.weight();
+}
+
+// The unweighted contribution of strategy (s,t) and, for s > 0, its connection c; for t = 1 also
+// the pixel it lands on. light[0] serves s = 1 as well: y_0 is a point sampled on a light by
+// power and area, exactly next event's light sample, so s = 1 is next-event estimation. pbrt and
+// SmallVCM draw a fresh light point for every camera vertex: unbiased too, a few shadow rays'
+// worth of work more, and hardly less error (notes, Appendix A), so one y_0 serves them all.
+// Inlined always into both callers (connectSubpaths, mmlt's strategySample): it runs for every
+// (s,t) of every sample, and with two callers GCC stops inlining it.
+[[gnu::always_inline]]
+inline Vec3 connectStrategy(const Scene& scene, Subpath light, int s, Subpath camera, int t, Connection& c, int& pixel) {
+    const PathVertex& pt = camera[t - 1];
+    if (s == 0) {  // the camera subpath's last vertex is on an emitter
+        if (pt.type != PathVertex::Surface) return Vec3(0);
+        return pt.beta * emittedRadiance(scene, pt.sp, pt.wo);
+    }
+    const PathVertex& qs = light[s - 1];
+    if (!connectable(scene, qs) || (t > 1 && !connectable(scene, pt))) return Vec3(0);
+    evalConnection(scene, qs, pt, c);
+    if (isBlack(c.fy)) return Vec3(0);
+    if (t == 1) return connectToPinhole(scene, qs, pixel);  // light tracing (c serves the weight)
+    Vec3 contribution = connectVertices(qs, pt, c);
+    return isBlack(contribution) || !mutuallyVisible(scene, qs, pt) ? Vec3(0) : contribution;
+}
+
+// Per-strategy images (--strategies): strategy (s,t) with path length k = s+t-1 <= maxLength,
+// then (vcm) one image per path length of all its merges.
+inline int strategyIndex(int s, int t) {  // rows by k, s = 0..k within a row
+    int k = s + t - 1;
+    return k * (k + 1) / 2 - 1 + s;
+}
+inline int mergeImageIndex(int k, int maxLength) { return maxLength * (maxLength + 3) / 2 + k - 1; }
+inline int strategyImageCount(const RenderOptions& opt) {  // vcm: one merge image per length
+    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
+    return opt.method == Method::VCM ? mergeImageIndex(L + 1, L) : L * (L + 3) / 2;
+}
+
+// The light subpath of pixel `pixel` in pass `pass`: a stream of its own, apart from the pixel's
+// camera stream, so that vcm, which traces all light subpaths of a pass first, makes the same
+// ones as bdpt (--radius 0 gives bdpt's image bit for bit).
+inline Rng lightPathRng(const RenderOptions& opt, int pixel, int pass) {
+    return makeRng(opt.seed ^ 0x3c6ef372fe94f82bULL, uint64_t(pixel), uint64_t(pass));
+}
+
+// Every connection (s,t) of one camera subpath with one light subpath, MIS-weighted: bdpt's
+// estimate, and the connection half of vcm's (whose merges, mergeEta > 0, share the weights).
+inline Vec3 connectSubpaths(const Scene& scene, const RenderOptions& opt, Subpath light, const std::vector<PathVertex>& camera,
+                            int here, double mergeEta, RowOutput& out) {
+    Vec3 L(0);
+    for (int t = 1; t <= int(camera.size()); ++t)
+        for (int s = 0; s <= light.size(); ++s) {
+            int bounces = s + t - 2;
+            if (bounces < 0 || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
+            bool record = opt.strategyMaxLength > 0 && s + t - 1 <= opt.strategyMaxLength;
+            if (s == 1 && t == 1 && !record) continue;  // weight 0 (misWeight): spare its shadow ray
+            int pixel = here;
+            Connection connection;
+            Vec3 c = connectStrategy(scene, light, s, camera, t, connection, pixel);
+            if (isBlack(c)) continue;
+            float w = misWeight(scene, light, s, camera, t, opt.heuristic, connection, mergeEta);
+            if (t == 1) out.splats.push_back({pixel, c * w});
+            else L += c * w;
+            if (record) {
+                int k = strategyIndex(s, t);
+                out.strategySplats.push_back({pixel, c, 2 * k});
+                out.strategySplats.push_back({pixel, c * w, 2 * k + 1});
+            }
+        }
+    return L;
+}
+
+// One bdpt sample: a camera subpath through (filmX, filmY) in pixel `here`, a light subpath, and
+// all their connections (mlt, section (h), evaluates its states with it).
+inline Vec3 bdptSample(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, int here, Rng& cameraRng,
+                       Rng& lightRng, RowOutput& out) {
+    thread_local std::vector<PathVertex> camera, light;
+    cameraSubpath(scene, opt, filmX, filmY, cameraRng, camera);
+    lightSubpath(scene, opt, lightRng, light);
+    return connectSubpaths(scene, opt, light, camera, here, 0, out);
+}
+
+inline Vec3 sampleBDPT(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
+    FilmPoint f = jitteredFilmPoint(x, y, rng);
+    int here = y * scene.camera.width + x;
+    Rng lightRng = lightPathRng(opt, here, pass.pass);
+    return bdptSample(scene, opt, f.x, f.y, here, rng, lightRng, out);
+}
+
+// -- (g) vcm: "Vertex Connection and Merging (VCM, later)" (Georgiev, Krivanek, Davidovic and
+// Slusallek 2012; Hachisuka, Pantaleoni and Jensen 2012). Panel (f)'s limit: a connection needs
+// two non-specular vertices side by side, so a path L S D S E (a caustic on the floor seen in a
+// mirror, or a point light in a glass ball seen through glass) has no strategy at all; only s = 0
+// remains when the light has area, and nothing for a point light. Merging adds one: a light
+// subpath that lands at y within radius r of a camera vertex x counts as if it had reached x,
+//     C_merge = beta_camera(x) f(x) beta_light(y) / (pi r^2 N),
+// a density estimate over the N = width x height light subpaths of the pass (a disk kernel,
+// photon mapping's). Its density, relative to the connection strategy that samples x from the
+// camera, is that of landing on the disk:
+//     p_merge(x) = p_{s,t} * pi r^2 N * p_light(x)      (p_light(x): the light side's pdfFwd of x)
+// so in the ratio walk of misWeight a merge is one more term per non-specular vertex, and
+// mergeEta = pi r^2 N the only new number. Every heuristic applies as to connections (the max
+// heuristic, uniform: unchanged definitions over the larger set of strategies).
+// The kernel makes the merge biased: it blurs over the disk, so a pass's estimate is too smooth
+// by about r. Each pass shrinks the radius, r(n) = r_0 n^((alpha-1)/2) in pass n (the closed form
+// of Knaus and Zwicker 2011's radius recursion for progressive photon mapping, as SmallVCM has it), slowly enough (alpha in (0,1)) that the variance, which grows like
+// 1/r^2, is still averaged away: bias and variance both vanish as passes go on (consistent), and
+// the error falls more slowly than -1/2 in log(error) against log(time).
+// Per pass: trace every pixel's light subpath (the same as bdpt's), keep them all, put their
+// mergeable vertices in a hash grid; then every camera subpath makes bdpt's connections with its
+// own pixel's light subpath, and at each of its non-specular vertices merges with the vertices
+// in the grid within r.
+
+// A uniform grid of cells of side 2r, hashed into as many buckets as points: a query sphere of
+// radius r then overlaps at most 2 cells per axis, 8 in all. Two cells may share a bucket; a
+// bucket is visited once. The points are kept in bucket order, so that a query reads each
+// bucket's points one after another (the queries are what merging costs: memory, not math).
+struct HashGrid {
+    float radius = 0;
+    std::vector<uint32_t> bucketStart;  // bucket b holds points[bucketStart[b] .. bucketStart[b+1])
+    std::vector<Vec3> points;           // in bucket order
+    std::vector<uint32_t> entries;      // points[e] is the caller's point entries[e]
+};
+
+inline uint32_t gridBucket(const HashGrid& g, Vec3 p, int dx, int dy, int dz) {
+    float cell = 2 * g.radius;
+    auto coordinate = [&](float x, int d) { return uint32_t(int64_t(std::floor(x / cell)) + d); };
+    uint32_t h = coordinate(p.x, dx) * 73856093u ^ coordinate(p.y, dy) * 19349663u ^ coordinate(p.z, dz) * 83492791u;
+    return h % uint32_t(g.bucketStart.size() - 1);
+}
+
+inline void buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius) {
+    g.radius = radius;
+    g.bucketStart.assign(std::max<size_t>(1, points.size()) + 1, 0);
+    g.entries.resize(points.size());
+    g.points.resize(points.size());
+    std::vector<uint32_t> bucket(points.size());
+    for (size_t i = 0; i < points.size(); ++i) ++g.bucketStart[(bucket[i] = gridBucket(g, points[i], 0, 0, 0)) + 1];
+    for (size_t b = 1; b < g.bucketStart.size(); ++b) g.bucketStart[b] += g.bucketStart[b - 1];
+    std::vector<uint32_t> fill(g.bucketStart.begin(), g.bucketStart.end() - 1);
+    for (size_t i = 0; i < points.size(); ++i) {
+        uint32_t e = fill[bucket[i]]++;
+        g.entries[e] = uint32_t(i);
+        g.points[e] = points[i];
+    }
+}
+
+// Calls visit(e) for every point e (in bucket order) within the grid's radius of p, in a fixed
+// order.
+template <class Visit>
+inline void forEachNeighbour(const HashGrid& g, Vec3 p, Visit&& visit) {
+    if (g.points.empty()) return;
+    float cell = 2 * g.radius, r2 = g.radius * g.radius;
+    // The cells of p - r and p + r: the same or the next one on each axis.
+    auto next = [&](float x) { return int(std::floor((x + g.radius) / cell) - std::floor((x - g.radius) / cell)); };
+    Vec3 low = p - Vec3(g.radius);
+    int nx = next(p.x), ny = next(p.y), nz = next(p.z);
+    uint32_t buckets[27], begin[27], end[27];  // 8 unless a division rounds p - r and p + r three cells apart
+    int count = 0;
+    for (int dz = 0; dz <= nz; ++dz)
+        for (int dy = 0; dy <= ny; ++dy)
+            for (int dx = 0; dx <= nx; ++dx) {
+                uint32_t b = gridBucket(g, low, dx, dy, dz);
+                if (std::find(buckets, buckets + count, b) != buckets + count) continue;
+                buckets[count++] = b;
+                __builtin_prefetch(&g.bucketStart[b]);
+            }
+    // Each bucket is two cache misses (its start, its first point): asked for all at once, they
+    // overlap, and the query costs about two misses instead of sixteen.
+    for (int i = 0; i < count; ++i) {
+        begin[i] = g.bucketStart[buckets[i]];
+        end[i] = g.bucketStart[buckets[i] + 1];
+        if (begin[i] < end[i]) __builtin_prefetch(&g.points[begin[i]]);
+    }
+    for (int i = 0; i < count; ++i)
+        for (uint32_t e = begin[i]; e < end[i]; ++e) {
+            Vec3 d = g.points[e] - p;
+            if (dot(d, d) <= r2) visit(e);
+        }
+}
+
+// The pass's light subpaths: pixel p's is paths[p], its vertices stored row by row (the
+// connections need them whole). The mergeable ones also go into the grid, as records.
+struct VcmPass {
+    float radius = 0;
+    double mergeEta = 0;                  // pi r^2 N_light; 0: no merging (vcm is bdpt)
+    std::vector<std::vector<PathVertex>> rowVertices;
+    std::vector<Subpath> paths;
+    // A mergeable light vertex y = light[index] of paths[path] with what its merges need of the
+    // light subpath (qs = light[index - 1]), so that a merge reads this record alone.
+    struct Stored {
+        Vec3 wo, beta;                    // y's
+        double pdfFwd;                    // y's
+        double qsAreaFactor;              // cos at qs / |qs - y|^2: a solid-angle density at y -> area at qs
+        uint32_t path, index;
+        bool qsDelta;
+    };
+    std::vector<Stored> stored;           // in the grid's bucket order
+    HashGrid grid;
+    size_t bytes() const {  // what the light vertices and the grid take
+        size_t b = 0;
+        for (const std::vector<PathVertex>& row : rowVertices) b += row.capacity() * sizeof(PathVertex);
+        return b + paths.capacity() * sizeof(Subpath) + stored.capacity() * sizeof(Stored) + grid.points.capacity() * sizeof(Vec3) +
+               (grid.bucketStart.capacity() + grid.entries.capacity()) * sizeof(uint32_t);
+    }
+};
+
+// The record of vertex i of the light subpath `light`, which is the pass's subpath number `path`.
+inline VcmPass::Stored storedVertex(Subpath light, int i, uint32_t path) {
+    const PathVertex &y = light[i], &qs = light[i - 1];
+    return {y.wo, y.beta, y.pdfFwd, cosAt(qs, y.wo) / double(y.prevDist2), path, uint32_t(i), qs.delta};
+}
+
+// r_0 when --radius is not given: one pixel's footprint where the central camera ray meets the
+// first non-specular surface (straight through glass and mirrors: a glass ball around the
+// camera is not the scene), d * 2 tan(fov/2) / height. A merge then blurs by about a pixel in
+// the first pass, less later: a smaller r_0 is noisier, a larger one blurs more and finds more
+// candidates per query (Appendix A measures the trade). One footprint is also what SmallVCM's
+// default (0.003 scene radii at 512x512) comes to on these scenes.
+inline float defaultMergeRadius(const Scene& scene) {
+    const Camera& cam = scene.camera;
+    Ray ray = cameraRay(cam, 0.5f * cam.width, 0.5f * cam.height);
+    float distance = 0;
+    for (int crossed = 0; crossed < 16; ++crossed) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found()) break;
+        distance += hit.t;
+        SurfacePoint sp = surfaceAt(scene, ray, hit);
+        if (!isSpecular(scene.materials[scene.shapes[sp.shape].material])) break;
+        ray = spawnRay(sp, ray.d);
+    }
+    return (distance > 0 ? distance : 1) * 2 * cam.tanHalfFov / cam.height;
+}
+
+inline float mergeRadius(const Scene& scene, const RenderOptions& opt, int pass) {  // r(n) = r_0 n^((alpha-1)/2), n = pass + 1
+    float r0 = opt.mergeRadius >= 0 ? opt.mergeRadius : defaultMergeRadius(scene);
+    return r0 * std::pow(float(pass + 1), (opt.alpha - 1) / 2);
+}
+
+inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, VcmPass& vp, RayCount& rays) {
+    const int W = scene.camera.width, H = scene.camera.height;
+    vp.radius = mergeRadius(scene, opt, pass);
+    vp.mergeEta = double(kPi) * vp.radius * vp.radius * double(W) * H;
+    vp.rowVertices.resize(H);  // kept from pass to pass: a row's vertices are refilled, not reallocated
+    std::vector<std::vector<int>> rowLengths(H);
+    RayCount traced = parallelRows(H, threads, [&](int y, bool) {
+        thread_local std::vector<PathVertex> path;
+        vp.rowVertices[y].clear();
+        for (int x = 0; x < W; ++x) {
+            Rng rng = lightPathRng(opt, y * W + x, pass);
+            lightSubpath(scene, opt, rng, path);
+            vp.rowVertices[y].insert(vp.rowVertices[y].end(), path.begin(), path.end());
+            rowLengths[y].push_back(int(path.size()));
+        }
+    });
+    rays += traced;
+    vp.paths.clear();
+    vp.stored.clear();
+    std::vector<Vec3> points;  // of the stored vertices, for the grid (which keeps its own copy)
+    for (int y = 0; y < H; ++y) {
+        const PathVertex* v = vp.rowVertices[y].data();
+        for (int n : rowLengths[y]) {
+            uint32_t path = uint32_t(vp.paths.size());
+            vp.paths.emplace_back(v, n);
+            for (int i = 1; i < n && vp.radius > 0; ++i)
+                if (connectable(scene, v[i])) {
+                    vp.stored.push_back(storedVertex(Subpath(v, n), i, path));
+                    points.push_back(v[i].sp.p);
+                }
+            v += n;
+        }
+    }
+    if (vp.radius <= 0) return;
+    buildHashGrid(vp.grid, points, vp.radius);
+    std::vector<VcmPass::Stored> byBucket(vp.stored.size());
+    for (size_t e = 0; e < byBucket.size(); ++e) byBucket[e] = vp.stored[vp.grid.entries[e]];
+    vp.stored.swap(byBucket);
+}
+
+// w of the merge of camera[t-1] with y = light[j] (light: y's light subpath; y its record): the
+// path is light[0..j-1] + camera[t-1..0] as for the connection (j, t), y's density of reaching
+// the merged vertex counted once. pdf and pdfReverse: camera[t-1]'s BSDF densities of sampling
+// y.wo from camera[t-1].wo and back.
+// The max heuristic evaluates the merged path on one geometry, the connection (j, t)'s, with the
+// camera vertex x where y was: in the furnace many strategies have exactly equal densities, and
+// y's densities mixed with x's would make ties flip from one photon to the next (a visible bias;
+// notes, page 15); the other heuristics, continuous in the densities, change by O(r) only.
+// That costs one more BSDF evaluation per merge, at light[j-1]. After a delta event at light[j-1]
+// only y lies on the sampled direction, and y's geometry is kept.
+inline float mergeWeight(const Scene& scene, Subpath light, const VcmPass::Stored& y, Subpath camera, int t, Heuristic heuristic,
+                         double mergeEta, float pdf, float pdfReverse) {
+    const int j = int(y.index);
+    const PathVertex& x = camera[t - 1];
+    Junction jn;
+    double self = mergeEta * y.pdfFwd;  // p_merge / p_{j,t}
+    if (heuristic == Heuristic::Max && !y.qsDelta) {
+        Connection c;
+        evalConnection(scene, light[j - 1], x, c);
+        jn = connectionJunction(scene, light, j, camera, t, c);
+        self = mergeEta * jn.ptRev;
+    } else {
+        jn.ptRev = y.pdfFwd;
+        jn.qsRev = pdf * x.continuation * y.qsAreaFactor;
+        jn.ptMinusRev = toArea(pdfReverse * x.continuation, camera[t - 2], x.wo, x.prevDist2);
+        jn.qsMinusRev = j >= 2 ? light[j - 2].pdfRev : 0;
+    }
+    jn.lightEndDelta = true;
+    if (!(self > 0)) return 0;  // a light vertex sampled with density 0 cannot be merged
+    MisSum m{heuristic, self};
+    if (!y.qsDelta) m.add(1);   // the connection (j, t)
+    misWalk(light, j, camera, t, mergeEta, jn, m);  // the merge itself among them
+    return m.weight();
+}
+
+// Every merge at the camera vertices z_1..z_{t-1}: the vertices of all light subpaths of the
+// pass within r (their own pixel's as well: a merge is not a connection).
+inline Vec3 mergeCameraVertices(const Scene& scene, const RenderOptions& opt, const VcmPass& vp, const std::vector<PathVertex>& camera,
+                                int here, RowOutput& out) {
+    Vec3 L(0);
+    for (int t = 2; t <= int(camera.size()); ++t) {
+        const PathVertex& x = camera[t - 1];
+        if (!connectable(scene, x)) continue;
+        forEachNeighbour(vp.grid, x.sp.p, [&](uint32_t n) {
+            const VcmPass::Stored& y = vp.stored[n];
+            int k = int(y.index) + t - 1;  // path length: index + 1 light vertices, t camera, one shared
+            if (k - 1 > opt.maxDepth) return;
+            float pdf, pdfReverse;
+            Vec3 f = evalBsdf(scene, x.sp, x.wo, y.wo, Transport::Radiance, pdf, pdfReverse);
+            float cosLight = absDot(y.wo, x.sp.ng);  // the light subpath's flux arrived through ng
+            if (isBlack(f) || cosLight == 0) return;
+            Vec3 c = x.beta * f * y.beta / (cosLight * float(vp.mergeEta));
+            float w = mergeWeight(scene, vp.paths[y.path], y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
+            L += c * w;
+            if (opt.strategyMaxLength > 0 && k <= opt.strategyMaxLength) {
+                int image = mergeImageIndex(k, opt.strategyMaxLength);
+                out.strategySplats.push_back({here, c, 2 * image});
+                out.strategySplats.push_back({here, c * w, 2 * image + 1});
+            }
+        });
+    }
+    return L;
+}
+
+inline Vec3 sampleVCM(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
+    thread_local std::vector<PathVertex> camera;
+    const VcmPass& vp = *pass.vcm;
+    FilmPoint f = jitteredFilmPoint(x, y, rng);
+    cameraSubpath(scene, opt, f.x, f.y, rng, camera);
+    int here = y * scene.camera.width + x;
+    Vec3 L = connectSubpaths(scene, opt, vp.paths[here], camera, here, vp.mergeEta, out);
+    return vp.mergeEta > 0 ? L + mergeCameraVertices(scene, opt, vp, camera, here, out) : L;
+}
+
+// -- (h) mlt, mmlt: "Metropolis-Sampling [Veach '97] (see later): random variation and mutations
+// of bidirectional paths; very well suited for very complex light paths; unbiased but relatively
+// complex algorithms; uneven convergence". Primary-sample-space MLT (Kelemen, Szirmay-Kalos, Antal
+// and Csonka 2002) over bdpt's own sample. A state u is the list of uniform numbers one bdpt
+// sample draws (section 1: every number passes Rng::uniform), kept in three streams so that a
+// number keeps its meaning when the other subpath changes length: the camera subpath's (the film
+// position first), the light subpath's and (mmlt) the strategy's. The sample's MIS-weighted
+// contributions h_j(u) to pixels j (t = 1 lands anywhere) give the image as an integral over u,
+//     I_j = W H  integral h_j(u) du      (the sample's pixel is one of W H, chosen by u),
+// and Metropolis draws states with density f(u)/b, f = luminance of sum_j h_j(u) (how bright the
+// sample is), b = integral f(u) du, so that
+//     I_j = W H b E_{f/b}[ h_j / f ]:   each of the W H x spp mutations adds b h_j / f / spp.
+// A step proposes v from u with a symmetric T(u->v) = T(v->u) and accepts it with
+//     a(u->v) = min(1, f(v) T(v->u) / (f(u) T(u->v))) = min(1, f(v) / f(u)),
+// which gives detailed balance, f(u) T(u->v) a(u->v) = f(v) T(v->u) a(v->u): states distributed
+// as f/b stay so. Two kinds of steps (Kelemen):
+//   large (probability --large-step): every number afresh, v independent of u: finds new paths;
+//   small: each number moved by a normal of deviation --sigma, wrapped into [0,1): "random
+//   variation and mutations" of a path that carries light, exploring around it.
+// A number a state never drew is drawn afresh when first used (a longer path than before).
+// Expected-value splats (Veach 1997, 11.5): the proposal adds a h(v)/f(v) and the current state
+// (1-a) h(u)/f(u), whichever wins, so a rejected proposal still counts; the current state's
+// share is added once, when it is left.
+// Start-up bias: a chain started anywhere is distributed as f/b only after a while (forever, in
+// a region it cannot leave). A bootstrap of --bootstrap independent samples estimates b (their
+// mean f, zeros included), and each chain starts from one of them chosen in proportion to f,
+// which is distributed as f/b already (--fixed-start, the deliberate mistake: one fixed state).
+// Already, that is, as far as the bootstrap saw every kind of path: a bright family it missed
+// gets no chain until a large step finds it, and its light is short until then. mmlt's
+// bootstrap spreads one strategy per sample over maxdepth+1 lengths, so it needs more samples
+// than mlt's for each length to see its bright families (bootstrapSamples; notes, page 16).
+// A large step's proposal is an independent uniform state too (Kelemen's estimate of b): each
+// pass pools them into b for the next, so that b's error, which scales the whole image, keeps
+// falling (with the bootstrap's b alone the error stops falling at b's error). The price is a
+// bias of order 1/N from the dependence between b and the chains, far below the noise (test
+// `mlt and mmlt agree with the references ...`).
+// --chains chains, each its own random stream: a pass gives each its share of W H mutations,
+// and their splats are added in chain order, so the image does not depend on --threads.
+// mmlt (Hachisuka, Kaplanyan and Dachsbacher 2014; pbrt's MLT): the state also holds a path
+// length k and, by the strategy stream's number, one strategy s of the k+1 that make it; its
+// contribution is (k+1) w_{s,t} C_{s,t} (t = k+1-s): one connection per sample, weighted by bdpt's
+// MIS, so the chain spends its mutations where the strategy that carries the path does. A chain
+// keeps the k it starts with, drawn in proportion to b_k, the integral of f over paths of length k.
+// One stream of a state: its numbers, replayed in the order the walk asks for them.
+struct PrimaryStream {
+    std::vector<float> values;
+    size_t used = 0;
+    Rng* fresh = nullptr;  // draws the numbers the state has not used yet
+};
+inline float replayUniform(PrimaryStream& stream) {
+    if (stream.used == stream.values.size()) stream.values.push_back(stream.fresh->uniform());
+    return stream.values[stream.used++];
+}
+
+struct MltState {
+    PrimaryStream camera, light, strategy;
+    int length = 0;                    // mmlt: the path length k (segments); mlt: 0, every length
+    std::vector<Splat> contributions;  // h_j(u)
+    float f = 0;
+};
+
+// mmlt's sample: strategy (s, t = k+1-s) alone, its subpaths exactly s and t vertices long.
+inline Vec3 strategySample(const Scene& scene, const RenderOptions& opt, int k, int s, float filmX, float filmY, int here,
+                           Rng& cameraRng, Rng& lightRng, int& pixel) {
+    thread_local std::vector<PathVertex> camera, light;
+    int t = k + 1 - s;
+    cameraSubpath(scene, opt, filmX, filmY, cameraRng, camera, t);
+    light.clear();
+    if (s > 0) lightSubpath(scene, opt, lightRng, light, s);
+    if (int(camera.size()) != t || int(light.size()) != s) return Vec3(0);  // ended early (roulette, escape)
+    Connection c;
+    pixel = here;
+    Vec3 C = connectStrategy(scene, light, s, camera, t, c, pixel);
+    if (isBlack(C)) return Vec3(0);
+    return C * misWeight(scene, light, s, camera, t, opt.heuristic, c, 0) * float(k + 1);
+}
+
+// h(u) and f(u) of state u; numbers it has not drawn yet come from the three fresh streams.
+inline void evaluateState(const Scene& scene, const RenderOptions& opt, MltState& u, Rng& cameraFresh, Rng& lightFresh,
+                          Rng& strategyFresh) {
+    Rng cameraRng, lightRng, strategyRng;
+    for (auto [rng, stream, fresh] : {std::make_tuple(&cameraRng, &u.camera, &cameraFresh), std::make_tuple(&lightRng, &u.light, &lightFresh),
+                                      std::make_tuple(&strategyRng, &u.strategy, &strategyFresh)}) {
+        rng->replay = stream;
+        stream->used = 0;
+        stream->fresh = fresh;
+    }
+    const int W = scene.camera.width, H = scene.camera.height;
+    float fx = cameraRng.uniform() * W, fy = cameraRng.uniform() * H;
+    int x = std::min(int(fx), W - 1), y = std::min(int(fy), H - 1), here = y * W + x;
+    float filmX = filmCoordinate(x, fx - x), filmY = filmCoordinate(y, fy - y);
+    u.contributions.clear();
+    if (opt.method == Method::MLT) {
+        thread_local RowOutput out;
+        out.splats.clear();
+        Vec3 L = bdptSample(scene, opt, filmX, filmY, here, cameraRng, lightRng, out);
+        u.contributions.swap(out.splats);
+        u.contributions.push_back({here, L});
+    } else {
+        int s = std::min(int(strategyRng.uniform() * float(u.length + 1)), u.length), pixel = -1;
+        Vec3 C = strategySample(scene, opt, u.length, s, filmX, filmY, here, cameraRng, lightRng, pixel);
+        if (pixel >= 0) u.contributions.push_back({pixel, C});
+    }
+    u.f = 0;
+    for (Splat& h : u.contributions) {
+        if (!isFinite(h.value)) h.value = Vec3(0);  // dropped, as every method drops them
+        u.f += luminance(h.value);
+    }
+}
+
+// f of independent uniform states: the bootstrap's, and every large step's proposal.
+struct FSum {
+    double sum = 0, sumSquares = 0, count = 0;
+    void add(double f) { sum += f, sumSquares += f * f, count += 1; }
+    void add(const FSum& o) { sum += o.sum, sumSquares += o.sumSquares, count += o.count; }
+};
+
+struct MltChain {
+    Rng rng;                   // its steps, acceptances and fresh numbers
+    MltState current, proposal;
+    double currentWeight = 0;  // the current state's expected-value splats not yet added
+    long long accepted = 0, proposed = 0;
+    FSum largeSteps;           // this pass's large-step proposals (for b)
+};
+
+inline float mltAcceptance(float fCurrent, float fProposal) { return fProposal > 0 ? std::min(1.0f, fProposal / fCurrent) : 0.0f; }
+
+// A small step of one number: symmetric in v and the result, wrapped into [0,1), never 1.
+inline float smallStep(float v, float step) {
+    float x = v + step;
+    x -= std::floor(x);
+    return x < 1 ? x : 0;
+}
+// Box-Muller: two independent standard normals from two uniforms (a small step needs one per
+// number; drawing them in pairs halves the cost of the sines, cosines and logarithms).
+inline void standardNormals(Rng& rng, float& a, float& b) {
+    float r = std::sqrt(-2 * std::log(1 - rng.uniform())), phi = 2 * kPi * rng.uniform();
+    a = r * std::cos(phi);
+    b = r * std::sin(phi);
+}
+
+inline bool proposeStep(const RenderOptions& opt, MltChain& chain) {
+    MltState &v = chain.proposal, &u = chain.current;
+    v.length = u.length;
+    v.camera.values = u.camera.values;
+    v.light.values = u.light.values;
+    v.strategy.values = u.strategy.values;
+    bool large = chain.rng.uniform() < opt.largeStep;
+    if (large) {
+        for (PrimaryStream* stream : {&v.camera, &v.light, &v.strategy}) stream->values.clear();  // afresh, when first used
+        return true;
+    }
+    float normal[2];
+    int left = 0;
+    for (PrimaryStream* stream : {&v.camera, &v.light, &v.strategy})
+        for (float& x : stream->values) {
+            if (left == 0) standardNormals(chain.rng, normal[0], normal[1]), left = 2;
+            x = smallStep(x, opt.sigma * normal[--left]);
+        }
+    return false;
+}
+
+// One Metropolis step of a chain whose current state has f > 0: propose, evaluate, splat the
+// expected values through splat(state, weight), accept with probability a. `accept` is
+// mltAcceptance (a test passes others, to see them fail).
+template <class Evaluate, class SplatState>
+inline void metropolisStep(const RenderOptions& opt, MltChain& chain, const Evaluate& evaluate, const SplatState& splat,
+                           float (*accept)(float, float) = mltAcceptance) {
+    bool large = proposeStep(opt, chain);
+    evaluate(chain.proposal);
+    if (large) chain.largeSteps.add(chain.proposal.f);
+    float a = accept(chain.current.f, chain.proposal.f);
+    if (a > 0) splat(chain.proposal, double(a) / chain.proposal.f);
+    chain.currentWeight += double(1 - a) / chain.current.f;
+    ++chain.proposed;
+    if (chain.rng.uniform() < a) {
+        splat(chain.current, chain.currentWeight);
+        chain.currentWeight = 0;
+        std::swap(chain.current, chain.proposal);
+        ++chain.accepted;
+    }
+}
+
+// What mlt keeps from pass to pass.
+struct MltPass {
+    double b = 0, bStandardError = 0;  // the estimate of b = integral f(u) du this pass uses
+    std::vector<FSum> fByLength;       // f of independent states, per path length (mlt: one)
+    std::vector<MltChain> chains;
+    std::vector<std::vector<Splat>> chainSplats;  // this pass's, per chain
+    std::vector<Vec3> image;                      // this pass's: b sum h/f over W H mutations
+    long long total(long long MltChain::*count) const {  // accepted or proposed, over the chains
+        long long n = 0;
+        for (const MltChain& c : chains) n += c.*count;
+        return n;
+    }
+};
+
+// The bootstrap's size: mmlt's samples are single strategies, each noisier than bdpt's whole
+// sample and a few times cheaper, and it spreads them over maxdepth+1 path lengths: ten times
+// mlt's (fewer left the start-up bias below visible on cornell-glass at 256 mutations per pixel).
+inline int bootstrapSamples(const RenderOptions& opt) {
+    return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::MMLT ? 1000000 : 100000;
+}
+
+inline Rng bootstrapRng(const RenderOptions& opt, int sample, int stream) {
+    return makeRng(opt.seed ^ 0x2545f4914f6cdd1dULL, uint64_t(sample), uint64_t(stream));
+}
+
+// Bootstrap sample i (mmlt: of length 1 + i mod (maxdepth+1)) into u, from its own streams.
+inline void bootstrapSample(const Scene& scene, const RenderOptions& opt, int i, MltState& u) {
+    Rng camera = bootstrapRng(opt, i, 0), light = bootstrapRng(opt, i, 1), strategy = bootstrapRng(opt, i, 2);
+    u.camera.values.clear();
+    u.light.values.clear();
+    u.strategy.values.clear();
+    u.length = opt.method == Method::MMLT ? 1 + i % (opt.maxDepth + 1) : 0;
+    evaluateState(scene, opt, u, camera, light, strategy);
+}
+
+// b = sum over lengths k of the mean f of length k's independent samples (mlt: one length),
+// and its standard error.
+inline void estimateB(MltPass& mp) {
+    double b = 0, variance = 0;
+    for (const FSum& s : mp.fByLength) {
+        if (s.count == 0) continue;
+        double mean = s.sum / s.count;
+        b += mean;
+        variance += std::max(0.0, s.sumSquares / s.count - mean * mean) / std::max(1.0, s.count - 1);
+    }
+    mp.b = b;
+    mp.bStandardError = std::sqrt(variance);
+}
+
+// b from --bootstrap samples (mmlt: spread evenly over the lengths), and each chain's start: a
+// bootstrap sample drawn in proportion to its f.
+inline void startChains(const Scene& scene, const RenderOptions& opt, int threads, MltPass& mp, RayCount& rays) {
+    const int n = bootstrapSamples(opt), lengths = opt.method == Method::MMLT ? opt.maxDepth + 1 : 1;
+    std::vector<double> f(n);
+    RayCount traced = parallelRows(n, threads, [&](int i, bool) {
+        thread_local MltState u;
+        bootstrapSample(scene, opt, i, u);
+        f[i] = u.f;
+    });
+    rays += traced;
+    mp.fByLength.assign(lengths, FSum());
+    for (int i = 0; i < n; ++i) mp.fByLength[i % lengths].add(f[i]);
+    estimateB(mp);
+    std::vector<double> count(lengths);
+    for (int k = 0; k < lengths; ++k) count[k] = mp.fByLength[k].count;
+    mp.chains.assign(std::max(1, opt.chains), MltChain());
+    mp.chainSplats.assign(mp.chains.size(), {});
+    if (!(mp.b > 0)) return;  // no sample found light: the image stays black
+    // Each length's samples weigh by 1/count of that length, so that the choice is f / (n_k b).
+    std::vector<double> cdf(n);
+    double total = 0;
+    for (int i = 0; i < n; ++i) cdf[i] = total += f[i] / count[i % lengths];
+    int firstLit = int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
+    for (size_t c = 0; c < mp.chains.size(); ++c) {
+        MltChain& chain = mp.chains[c];
+        chain.rng = makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(c), 0);
+        double pick = double(chain.rng.uniform()) * total;
+        int i = opt.fixedStart ? firstLit : int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin());
+        i = std::min(i, n - 1);
+        while (f[i] == 0) --i;  // pick fell on the edge of a zero: the sample before holds it
+        bootstrapSample(scene, opt, i, chain.current);
+    }
+}
+
+// One pass: W H mutations shared among the chains (one per pixel on average), their splats
+// added in chain order into mp.image.
+inline void traceMltPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, MltPass& mp, RayCount& rays) {
+    const long long N = (long long)scene.camera.width * scene.camera.height;
+    if (pass == 0) startChains(scene, opt, threads, mp, rays);
+    mp.image.assign(size_t(N), Vec3(0));
+    if (!(mp.b > 0)) return;
+    const long long C = (long long)mp.chains.size();
+    RayCount traced = parallelRows(int(C), threads, [&](int c, bool) {
+        MltChain& chain = mp.chains[c];
+        std::vector<Splat>& out = mp.chainSplats[c];
+        out.clear();
+        auto splat = [&](const MltState& u, double weight) {
+            for (const Splat& h : u.contributions)
+                if (!isBlack(h.value)) out.push_back({h.pixel, h.value * float(weight * mp.b)});
+        };
+        auto evaluate = [&](MltState& u) { evaluateState(scene, opt, u, chain.rng, chain.rng, chain.rng); };
+        for (long long i = 0, n = N / C + (c < N % C); i < n; ++i) metropolisStep(opt, chain, evaluate, splat);
+        splat(chain.current, chain.currentWeight);
+        chain.currentWeight = 0;
+    });
+    rays += traced;
+    for (const std::vector<Splat>& splats : mp.chainSplats)
+        for (const Splat& s : splats) mp.image[s.pixel] += s.value;
+    for (MltChain& chain : mp.chains) {  // the next pass's b, with this pass's large steps
+        mp.fByLength[opt.method == Method::MMLT ? chain.current.length - 1 : 0].add(chain.largeSteps);
+        chain.largeSteps = FSum();
+    }
+    estimateB(mp);
+}
+
+// mlt and mmlt: the pixel's value is its share of the chains' pass.
+inline Vec3 sampleMLT(const Scene& scene, const RenderOptions&, const PassData& pass, int x, int y, Rng&, RowOutput&) {
+    return pass.mlt->image[size_t(y) * scene.camera.width + x];
+}
+
+// == 8. Film, rendering loop, image files =======================================================
+// A pass gives every pixel one camera sample (and, for light-path methods, every pixel's random
+// stream one light path, splatted wherever it lands). Pixels write only themselves; splats are
+// kept per image row and added in row order after the pass, so the sum, and the image, is the
+// same bit for bit whatever the number of threads. The image is (sum of passes) / passes.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<Vec3> pixels;
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), pixels(size_t(w) * h) {}
+    Vec3& at(int x, int y) { return pixels[size_t(y) * width + x]; }
+    const Vec3& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
+};
+
+inline double imageMean(const Image& img) {
+    double s = 0;
+    for (const Vec3& p : img.pixels) s += double(p.x) + p.y + p.z;
+    return s / (3.0 * std::max<size_t>(1, img.pixels.size()));
+}
+
+struct RenderResult {
+    Image image;                    // mean over passes
+    Image variance;                 // per pixel and channel: variance of that mean (from the passes)
+    int passes = 0;
+    long long nonFinite = 0;        // NaN/inf samples and splats dropped
+    double seconds = 0;
+    std::vector<double> passMeans;  // each pass's image mean: independent samples of the mean
+    double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: the energy gathered, before and after
+    double clampRemoved() const { return energyUnclamped > 0 ? 1 - energyClamped / energyUnclamped : 0; }
+    std::vector<Image> strategyImages;  // bdpt --strategies: [2 strategyIndex(s,t) + weighted]
+    bool interrupted = false;
+    RayCount rays;                  // all threads, all passes (ir's VPL paths included)
+    size_t lightVertexBytes = 0;    // vcm: the most one pass's light subpaths and grid took
+    long long mergeableVertices = 0;  // vcm: in the grid, summed over passes
+    double mltB = 0, mltBError = 0;   // mlt, mmlt: the final b (bootstrap and large steps) and its standard error
+    long long mltAccepted = 0, mltProposed = 0;
+};
+
+struct ProgressBar {
+    bool enabled = false;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last;
+    void show(double fraction, int passes, double etaSeconds) {
+        if (!enabled) return;
+        auto now = std::chrono::steady_clock::now();
+        if (fraction < 1 && now - last < std::chrono::milliseconds(200)) return;
+        last = now;
+        int width = 30, filled = int(std::min(1.0, fraction) * width);
+        std::fprintf(stderr, "\r[%s%s] %3d%%  pass %d  ETA %5.1f s ", std::string(filled, '#').c_str(),
+                     std::string(width - filled, '.').c_str(), int(100 * std::min(1.0, fraction)), passes,
+                     std::max(0.0, etaSeconds));
+        if (fraction >= 1) std::fprintf(stderr, "\n");
+    }
+};
+
+inline double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Ctrl-C: the first interrupt lets the pass in flight finish, then the render stops and the
+// completed passes are written as usual (status 130). A second one removes the file being
+// written, if any, and exits at once (status 3, "abandoned"); but a second signal within a second
+// of the first is the same key press: `timeout -s INT` and some terminals signal the process and
+// then its whole group. Only async-signal-safe calls in the handler.
+constexpr int kExitInterrupted = 130, kExitAbandoned = 3;
+inline std::atomic<int> gInterrupts{0};
+inline std::atomic<long long> gFirstInterruptNs{0};
+inline char gFileBeingWritten[4096] = {0};
+inline void writeToStderr(const char* text) {
+    ssize_t written = write(2, text, std::strlen(text));
+    (void)written;  // nothing more to do if stderr is gone
+}
+extern "C" inline void onInterrupt(int) {
+    timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    long long now = ts.tv_sec * 1000000000LL + ts.tv_nsec;
+    if (gInterrupts.fetch_add(1) == 0) {
+        gFirstInterruptNs = now;
+        writeToStderr("\nbdpt: interrupted: finishing the pass in flight, then writing the image (Ctrl-C again to abandon it)\n");
+        return;
+    }
+    if (now - gFirstInterruptNs.load() < 1000000000LL) return;
+    if (gFileBeingWritten[0]) unlink(gFileBeingWritten);
+    writeToStderr("bdpt: abandoned: no image written\n");
+    _exit(kExitAbandoned);
+}
+
+// What the methods prepare per pass, kept from pass to pass (vcm reuses its buffers, mlt its chains).
+struct PassStorage {
+    std::vector<Vpl> vpls;
+    VcmPass vcm;
+    MltPass mlt;
+    RayCount rays;  // traced for them
+};
+
+inline PassData preparePass(const Scene& scene, const RenderOptions& opt, int pass, int threads, PassStorage& storage) {
+    PassData data;
+    data.pass = pass;
+    storage.rays = RayCount();
+    switch (opt.method) {
+        case Method::IR:
+            storage.rays = parallelRows(1, 1, [&](int, bool) { storage.vpls = traceVpls(scene, opt, pass); });
+            data.vpls = &storage.vpls;
+            break;
+        case Method::VCM:
+            traceVcmLightPass(scene, opt, pass, threads, storage.vcm, storage.rays);
+            data.vcm = &storage.vcm;
+            break;
+        case Method::MLT: case Method::MMLT:
+            traceMltPass(scene, opt, pass, threads, storage.mlt, storage.rays);
+            data.mlt = &storage.mlt;
+            break;
+        case Method::PT: case Method::NEE: case Method::LT: case Method::BDPT: break;  // nothing before the pixels
+    }
+    return data;
+}
+
+// Every method has one shape: a sample of pixel (x, y) from the pixel's own random stream, what
+// its camera path brings back to the pixel returned, what lands elsewhere (light paths) splatted.
+using SampleFunction = Vec3 (*)(const Scene&, const RenderOptions&, const PassData&, int x, int y, Rng&, RowOutput&);
+inline SampleFunction sampleFunction(Method m) {
+    switch (m) {
+        case Method::PT: return samplePT;
+        case Method::NEE: return sampleNEE;
+        case Method::LT: return sampleLT;
+        case Method::IR: return sampleIR;
+        case Method::BDPT: return sampleBDPT;
+        case Method::VCM: return sampleVCM;
+        case Method::MLT: case Method::MMLT: return sampleMLT;
+    }
+    return nullptr;  // not reached: every method has its case (-Wswitch checks)
+}
+
+// The film: per pixel and channel the sums of the pass images and of their squares (the mean is
+// the image, the spread its variance), and the sums of the strategy images.
+struct Film {
+    int width, height;
+    std::vector<double> sum, sumSq;
+    std::vector<std::vector<double>> strategySum;
+    Film(int w, int h, int strategyImages)
+        : width(w), height(h), sum(3 * size_t(w) * h, 0.0), sumSq(sum.size(), 0.0),
+          strategySum(2 * strategyImages, std::vector<double>(sum.size(), 0.0)) {}
+    // A pass's rows: the pixels' samples are in `pass`; splats are added in row order, so that the
+    // image does not depend on which thread rendered which row. Returns the pass image's mean.
+    double addPass(std::vector<Vec3>& pass, const std::vector<RowOutput>& rows, RenderResult& result) {
+        for (const RowOutput& row : rows) {
+            result.nonFinite += row.nonFinite;
+            result.energyUnclamped += row.energyUnclamped;
+            result.energyClamped += row.energyClamped;
+            for (const Splat& s : row.splats) {
+                if (isFinite(s.value)) pass[s.pixel] += s.value;
+                else ++result.nonFinite;
+            }
+            for (const StrategySplat& s : row.strategySplats)
+                if (isFinite(s.value))
+                    for (int c = 0; c < 3; ++c) strategySum[s.image][3 * size_t(s.pixel) + c] += s.value[c];
+        }
+        double passSum = 0;
+        for (size_t i = 0; i < pass.size(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+                sum[3 * i + c] += pass[i][c];
+                sumSq[3 * i + c] += double(pass[i][c]) * pass[i][c];
+            }
+            passSum += double(pass[i].x) + pass[i].y + pass[i].z;
+        }
+        return passSum / (3.0 * pass.size());
+    }
+    // The image (mean over n passes), its variance, and the strategy images.
+    void finish(int n, RenderResult& result) const {
+        result.image = result.variance = Image(width, height);
+        for (const std::vector<double>& s : strategySum) {
+            Image img(width, height);
+            for (size_t i = 0; i < img.pixels.size(); ++i)
+                for (int c = 0; c < 3; ++c) img.pixels[i][c] = float(s[3 * i + c] / n);
+            result.strategyImages.push_back(img);
+        }
+        for (size_t i = 0; i < result.image.pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                double mean = sum[3 * i + c] / n;
+                result.image.pixels[i][c] = float(mean);
+                result.variance.pixels[i][c] = n > 1 ? float(std::max(0.0, sumSq[3 * i + c] / n - mean * mean) / (n - 1)) : 0.0f;
+            }
+    }
+};
+
+// The slides' estimator, pass by pass: every pixel's sample, then the splats, then the film.
+inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
+    const int W = scene.camera.width, H = scene.camera.height;
+    const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    const SampleFunction sample = sampleFunction(opt.method);
+    Film film(W, H, strategyImageCount(opt));
+    std::vector<Vec3> pass(size_t(W) * H);
+    std::vector<RowOutput> rows(H);
+    RenderResult result;
+    PassStorage storage;
+    ProgressBar bar;
+    bar.enabled = !opt.quiet && isatty(2);
+    auto t0 = std::chrono::steady_clock::now();
+    auto fraction = [&](double passesDone) { return opt.seconds > 0 ? secondsSince(t0) / opt.seconds : passesDone / std::max(1, opt.spp); };
+    for (int p = 0; opt.seconds > 0 ? (p == 0 || secondsSince(t0) < opt.seconds) : p < opt.spp; ++p) {
+        if (p > 0 && gInterrupts.load() > 0) {
+            result.interrupted = true;
+            break;
+        }
+        const PassData data = preparePass(scene, opt, p, threads, storage);
+        RayCount traced = parallelRows(H, threads, [&](int y, bool onCallingThread) {
+            RowOutput& row = rows[y];
+            row.splats.clear();
+            row.strategySplats.clear();
+            row.nonFinite = 0;
+            row.energyUnclamped = row.energyClamped = 0;
+            for (int x = 0; x < W; ++x) {
+                Rng rng = makeRng(opt.seed, uint64_t(y) * W + x, uint64_t(p));
+                Vec3 v = sample(scene, opt, data, x, y, rng, row);
+                if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
+                pass[size_t(y) * W + x] = v;
+            }
+            if (onCallingThread) {
+                double f = fraction(p + double(y + 1) / H);
+                bar.show(std::min(0.999, f), p, secondsSince(t0) * (1 / std::max(1e-9, f) - 1));
+            }
+        });
+        result.rays += traced;
+        result.rays += storage.rays;
+        result.lightVertexBytes = std::max(result.lightVertexBytes, storage.vcm.bytes());
+        result.mergeableVertices += (long long)storage.vcm.stored.size();
+        result.passMeans.push_back(film.addPass(pass, rows, result));
+        if (opt.onPass) opt.onPass(p, pass, result.nonFinite);
+        result.passes = p + 1;
+    }
+    result.seconds = secondsSince(t0);
+    result.mltB = storage.mlt.b;
+    result.mltBError = storage.mlt.bStandardError;
+    result.mltAccepted = storage.mlt.total(&MltChain::accepted);
+    result.mltProposed = storage.mlt.total(&MltChain::proposed);
+    bar.show(1, result.passes, 0);
+    film.finish(result.passes, result);
+    return result;
+}
+
+// Files appear whole or not at all: written under a temporary name, then renamed.
+inline bool commitFile(const std::string& tmp, const std::string& path, bool ok) {
+    bool done = ok && std::rename(tmp.c_str(), path.c_str()) == 0;
+    if (!done) std::remove(tmp.c_str());
+    gFileBeingWritten[0] = 0;
+    return done;
+}
+inline std::string tempName(const std::string& path) {  // and remember it for a second Ctrl-C
+    std::string tmp = path + ".tmp" + std::to_string(getpid());
+    std::snprintf(gFileBeingWritten, sizeof gFileBeingWritten, "%s", tmp.c_str());
+    return tmp;
+}
+
+// PFM: linear floats, little-endian (scale -1), rows from the bottom up.
+inline bool writePFM(const Image& img, const std::string& path) {
+    std::string tmp = tempName(path);
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) return false;
+    bool ok = std::fprintf(f, "PF\n%d %d\n-1.0\n", img.width, img.height) > 0;
+    for (int y = img.height - 1; y >= 0 && ok; --y)
+        ok = std::fwrite(&img.at(0, y), sizeof(Vec3), img.width, f) == size_t(img.width);
+    ok = (std::fclose(f) == 0) && ok;
+    return commitFile(tmp, path, ok);
+}
+
+inline bool readPFM(const std::string& path, Image& img) {
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return false;
+    char magic[3] = {0};
+    int w = 0, h = 0;
+    float scale = 0;
+    bool ok = std::fscanf(f, "%2s %d %d %f", magic, &w, &h, &scale) == 4 && std::string(magic) == "PF" && w > 0 &&
+              h > 0 && w <= 16384 && h <= 16384 && scale < 0 && std::fgetc(f) != EOF;
+    if (ok) {
+        img = Image(w, h);
+        for (int y = h - 1; y >= 0 && ok; --y) ok = std::fread(&img.at(0, y), sizeof(Vec3), w, f) == size_t(w);
+    }
+    std::fclose(f);
+    return ok;
+}
+
+// Error against a reference image (speed against accuracy). RMSE over pixels and channels;
+// relMSE = mean (x - ref)^2 / (ref^2 + 0.01), as rendering papers report it; the relative bias of
+// the image mean; and a firefly measure: the 99.9th percentile of the per-pixel absolute error
+// over its median (large where a few pixels carry huge errors).
+struct ErrorMetrics {
+    double rmse = 0, relMse = 0, mean = 0, bias = 0, firefly = 0;
+    double rmseWithoutLamp = 0;  // rmse over the pixels that are not nearLamp
+};
+
+// A lamp seen directly: a pixel within one pixel of a reference value above 5. Its edge pixels
+// are part lamp (Le = 17 in the Cornell boxes) and part ceiling, and a camera sample's jitter lands
+// on one or the other: that noise is the pixel filter's, the same for every camera-path method,
+// and on the Cornell boxes it is most of their MSE, hiding the transport's error (light tracing
+// splats many lamp points into each such pixel per pass and does not show it). make efficiency
+// and the charts' curves leave these pixels out.
+inline bool nearLamp(const Image& ref, int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            int u = x + dx, v = y + dy;
+            if (u >= 0 && v >= 0 && u < ref.width && v < ref.height && maxComponent(ref.at(u, v)) > 5) return true;
+        }
+    return false;
+}
+
+inline ErrorMetrics compareToReference(const Image& img, const Image& ref) {
+    ErrorMetrics m;
+    std::vector<double> pixelError(img.pixels.size());
+    double refSum = 0, sum = 0, lampless = 0;
+    long lamplessValues = 0;
+    for (size_t i = 0; i < img.pixels.size(); ++i) {
+        bool lamp = ref.width > 0 && nearLamp(ref, int(i % ref.width), int(i / ref.width));
+        for (int c = 0; c < 3; ++c) {
+            double x = img.pixels[i][c], r = ref.pixels[i][c], e = x - r;
+            m.rmse += e * e;
+            if (!lamp) lampless += e * e, ++lamplessValues;
+            m.relMse += e * e / (r * r + 0.01);
+            sum += x;
+            refSum += r;
+        }
+        pixelError[i] = std::fabs(double(average(img.pixels[i])) - average(ref.pixels[i]));
+    }
+    double n = 3.0 * img.pixels.size();
+    m.rmse = std::sqrt(m.rmse / n);
+    m.rmseWithoutLamp = std::sqrt(lampless / std::max(1L, lamplessValues));
+    m.relMse /= n;
+    m.mean = sum / n;
+    m.bias = refSum > 0 ? (sum - refSum) / refSum : 0;
+    auto quantile = [&](double q) {
+        size_t k = std::min(pixelError.size() - 1, size_t(q * (pixelError.size() - 1) + 0.5));
+        std::nth_element(pixelError.begin(), pixelError.begin() + k, pixelError.end());
+        return pixelError[k];
+    };
+    double median = quantile(0.5), p999 = quantile(0.999);
+    m.firefly = p999 / std::max(median, 1e-12);
+    return m;
+}
+
+inline unsigned char toSRGB8(float linear) {
+    float v = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
+    return (unsigned char)(std::min(1.0f, std::max(0.0f, v)) * 255.0f + 0.5f);
+}
+
+inline std::vector<unsigned char> toSRGBBytes(const Image& img, float exposure) {
+    std::vector<unsigned char> bytes(img.pixels.size() * 3);
+    float scale = std::exp2(exposure);
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) bytes[3 * i + c] = toSRGB8(img.pixels[i][c] * scale);
+    return bytes;
+}
+
+inline bool writePNGBytes(const std::vector<unsigned char>& bytes, int width, int height, const std::string& path) {
+    std::string tmp = tempName(path);
+    bool ok = stbi_write_png(tmp.c_str(), width, height, 3, bytes.data(), width * 3) != 0;
+    return commitFile(tmp, path, ok);
+}
+
+inline bool writePNG(const Image& img, const std::string& path, float exposure) {
+    return writePNGBytes(toSRGBBytes(img, exposure), img.width, img.height, path);
+}
+
+// Where two methods differ: the ratio A/B of the two images' means over blocks of block x block
+// pixels (the blocks average the noise away), as a false-colour image that is white where A = B,
+// redder where A is brighter and bluer where darker, saturating at one stop; dark grey where
+// both are black. Each block's pixels hold its ratio (the PFM).
+inline Image blockRatio(const Image& a, const Image& b, int block) {
+    Image r(a.width, a.height);
+    for (int by = 0; by < a.height; by += block)
+        for (int bx = 0; bx < a.width; bx += block) {
+            double sa = 0, sb = 0;
+            for (int y = by; y < std::min(a.height, by + block); ++y)
+                for (int x = bx; x < std::min(a.width, bx + block); ++x) {
+                    sa += double(a.at(x, y).x) + a.at(x, y).y + a.at(x, y).z;
+                    sb += double(b.at(x, y).x) + b.at(x, y).y + b.at(x, y).z;
+                }
+            float ratio = sb > 0 ? float(sa / sb) : sa > 0 ? kInf : std::numeric_limits<float>::quiet_NaN();
+            for (int y = by; y < std::min(a.height, by + block); ++y)
+                for (int x = bx; x < std::min(a.width, bx + block); ++x) r.at(x, y) = Vec3(ratio);
+        }
+    return r;
+}
+
+inline Image ratioColours(const Image& ratio) {
+    Image c(ratio.width, ratio.height);
+    for (size_t i = 0; i < ratio.pixels.size(); ++i) {
+        float q = ratio.pixels[i].x;
+        if (std::isnan(q)) { c.pixels[i] = Vec3(0.03f); continue; }
+        float t = std::max(-1.0f, std::min(1.0f, q > 0 ? std::log2(q) : -1.0f));
+        c.pixels[i] = t >= 0 ? Vec3(1, 1 - t, 1 - t) : Vec3(1 + t, 1 + t, 1);
+    }
+    return c;
+}
+
+// Labels for the strategy pyramid: a 5-pixel-high font of the few characters it needs, 3 pixels
+// wide but for 'm', which needs 5 to read as m and not n.
+inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, int x0, int y0, const std::string& text, int scale) {
+    static const std::map<char, const char*> glyphs = {
+        {'0', "111101101101111"}, {'1', "010110010010111"}, {'2', "111001111100111"}, {'3', "111001111001111"},
+        {'4', "101101111001001"}, {'5', "111100111001111"}, {'6', "111100111101111"}, {'7', "111001001001001"},
+        {'8', "111101111101111"}, {'9', "111101111001111"}, {'s', "011100010001110"}, {'t', "010111010010011"},
+        {'=', "000111000111000"}, {' ', "000000000000000"}, {'k', "100101110101101"},
+        {'m', "0000011010101011010110101"}, {'+', "000010111010000"}};
+    int x = x0;
+    for (char ch : text) {
+        auto g = glyphs.find(ch);
+        if (g == glyphs.end()) continue;
+        const int glyphWidth = int(std::strlen(g->second)) / 5;
+        for (int gy = 0; gy < 5; ++gy)
+            for (int gx = 0; gx < glyphWidth; ++gx) {
+                if (g->second[gy * glyphWidth + gx] != '1') continue;
+                for (int dy = 0; dy < scale; ++dy)
+                    for (int dx = 0; dx < scale; ++dx) {
+                        int px = x + gx * scale + dx, py = y0 + gy * scale + dy;
+                        if (px < 0 || py < 0 || px >= width || py >= height) continue;
+                        for (int c = 0; c < 3; ++c) rgb[3 * (size_t(py) * width + px) + c] = 255;
+                    }
+            }
+        x += (glyphWidth + 1) * scale;
+    }
+}
+
+inline bool hasExtension(const std::string& path, const std::string& ext) {  // case-insensitive
+    if (path.size() <= ext.size() || path[path.size() - ext.size() - 1] == '/') return false;
+    for (size_t i = 0; i < ext.size(); ++i)
+        if (std::tolower((unsigned char)path[path.size() - ext.size() + i]) != ext[i]) return false;
+    return true;
+}
+
+inline std::string replaceExtension(const std::string& path, const std::string& ext) {
+    size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
+    bool hasExt = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+    return (hasExt ? path.substr(0, dot) : path) + ext;
+}
+
+// The pyramid's rows differ by orders of magnitude (each bounce keeps about the albedo), so each
+// row k is brightened by whole stops until its light, the sum of its weighted tiles, comes within
+// half a stop of the brightest row's; the tile's label prints them ("s1 t3 +2").
+inline bool hasMergeImages(const RenderResult& r, int maxLength) {  // vcm: a column "m k" of merges
+    return int(r.strategyImages.size()) > maxLength * (maxLength + 3);
+}
+
+inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
+    const bool merges = hasMergeImages(r, maxLength);
+    std::vector<double> rowMean(maxLength + 1, 0);
+    for (int k = 1; k <= maxLength; ++k) {
+        for (int s = 0; s <= k; ++s) rowMean[k] += imageMean(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1]);
+        if (merges && k > 1) rowMean[k] += imageMean(r.strategyImages[2 * mergeImageIndex(k, maxLength) + 1]);
+    }
+    double brightest = *std::max_element(rowMean.begin(), rowMean.end());
+    std::vector<int> stops(maxLength + 1, 0);
+    for (int k = 1; k <= maxLength; ++k)
+        if (rowMean[k] > 0) stops[k] = std::min(12, int(std::lround(std::log2(brightest / rowMean[k]))));
+    return stops;
+}
+
+// The slides' "Contributions of different paths" as a pyramid: row k = path length (segments),
+// column s = vertices from the light (t = k+1-s from the camera), one image per strategy p_{k,s}.
+// Each tile's label sits in a strip above it, never on the image: the lamp, row 1's whole
+// content, lies at the top of the frame.
+struct PyramidLayout {
+    bool merges;  // vcm: a column "m k" of merges
+    int W, H, gap = 4, scale, strip, rowH, canvasW, canvasH;
+    PyramidLayout(int width, int height, int maxLength, bool withMerges)
+        : merges(withMerges), W(width), H(height), scale(std::max(1, std::min(width / 40, height / 32))), strip(7 * scale),
+          rowH(strip + H + gap), canvasW((maxLength + 1 + merges) * (W + gap) + gap), canvasH(maxLength * rowH + gap) {}
+    int tileX(int k, int s, int maxLength) const { return gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap); }
+    int tileY(int k) const { return gap + (k - 1) * rowH + strip; }
+};
+
+// Every tile of the pyramid, row by row: fn(k, s, image index); s = k + 1 is the merges of
+// length k (vcm), named "m k".
+template <class Fn>
+void forEachPyramidTile(int maxLength, bool merges, Fn fn) {
+    for (int k = 1; k <= maxLength; ++k)
+        for (int s = 0; s <= k + merges; ++s) {
+            bool merge = s == k + 1;
+            if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
+            fn(k, s, merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, k + 1 - s));
+        }
+}
+
+inline std::string tileName(int k, int s) {  // "s1 t3", or "m k3" for the merges
+    return s == k + 1 ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(k + 1 - s);
+}
+
+// The montage of one kind (weighted or not), as sRGB bytes of layout.canvasW x layout.canvasH.
+inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLength, float exposure, bool weighted,
+                                                const PyramidLayout& layout, const std::vector<int>& rowStops) {
+    std::vector<unsigned char> canvas(size_t(layout.canvasW) * layout.canvasH * 3, 40);
+    forEachPyramidTile(maxLength, layout.merges, [&](int k, int s, int index) {
+        std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * index + weighted], exposure + rowStops[k]);
+        int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
+        for (int y = 0; y < layout.H; ++y)
+            std::copy(tile.begin() + 3 * size_t(y) * layout.W, tile.begin() + 3 * size_t(y + 1) * layout.W,
+                      canvas.begin() + 3 * (size_t(y0 + y) * layout.canvasW + x0));
+        std::string label = tileName(k, s) + (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
+        drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - 6 * layout.scale, label, layout.scale);
+    });
+    return canvas;
+}
+
+inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
+    if (r.strategyImages.empty()) return true;
+    const PyramidLayout layout(r.image.width, r.image.height, maxLength, hasMergeImages(r, maxLength));
+    const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
+    bool ok = true;
+    for (int weighted = 0; weighted < 2; ++weighted) {
+        forEachPyramidTile(maxLength, layout.merges, [&](int k, int s, int index) {
+            std::string name = dir + (s == k + 1 ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(k + 1 - s)) +
+                               (weighted ? "_weighted" : "_unweighted");
+            ok = ok && writePNG(r.strategyImages[2 * index + weighted], name + ".png", exposure) &&
+                 writePFM(r.strategyImages[2 * index + weighted], name + ".pfm");
+        });
+        std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
+        ok = ok && writePNGBytes(pyramidCanvas(r, maxLength, exposure, weighted, layout, rowStops), layout.canvasW, layout.canvasH, pyramid);
+        if (ok) out << "wrote " << pyramid << "\n";
+    }
+    if (ok) {
+        out << "pyramid rows k = 1.." << maxLength << " brightened by";
+        for (int k = 1; k <= maxLength; ++k) out << " +" << rowStops[k];
+        out << " stops (printed in each tile's label)\n";
+    }
+    return ok;
+}
+
+// == 9. Scene file =============================================================================
 // One directive per line, '#' starts a comment; the README documents each one with an example.
 //   camera     ex ey ez  lx ly lz  ux uy uz  fov  width height
 //   material   NAME diffuse R G B | mirror R G B | glass IOR | glossy R G B EXPONENT
@@ -1203,1922 +3084,311 @@ inline Scene loadScene(const std::string& path) {
     return parseScene(text, path);
 }
 
-// == 8. Integrators ============================================================================
-// Slides "Path sampling techniques" and "Results from different techniques": panels (a) to (f),
-// then (g) "Vertex Connection and Merging (VCM, later)" and (h) "Metropolis-Sampling (see
-// later)". Every method is one function of the same shape over the shared pieces above, so that
-// a diff of two methods shows how they differ.
-// Paths are counted in bounces (scattering vertices): a path of k segments has k-1 bounces, and
-// --maxdepth D keeps paths with at most D bounces.
-enum class Method { PT, NEE, LT, IR, BDPT, VCM, MLT, MMLT };
-inline bool isMetropolis(Method m) { return m == Method::MLT || m == Method::MMLT; }  // section (h)
-// How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
-// Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
-// the depth limit. bdpt's banner says which it uses and why.
-enum class Roulette { Throughput, Albedo, Off };
-enum class Heuristic;  // bdpt's MIS heuristics, defined with bdpt below
-
-struct RenderOptions {
-    Method method = Method::BDPT;
-    bool mis = false;          // nee: combine light and BSDF sampling (power heuristic)
-    int spp = 16;              // passes of one sample per pixel
-    double seconds = 0;        // > 0: render passes until this much time has passed
-    int threads = 0;           // 0: all cores
-    uint64_t seed = 1;
-    int maxDepth = 32;         // bounces
-    int rrStart = 3;           // Russian roulette from this many bounces on (Roulette::Throughput)
-    Roulette roulette = Roulette::Albedo;  // how lt, ir and bdpt end their subpaths (pt, nee: Throughput)
-    float exposure = 0;        // stops, for the PNG only
-    bool quiet = false;
-    int vplPaths = 16;         // ir: light paths traced per pass, each leaving VPLs
-    float clamp = 0;           // ir: > 0 bounds the geometry term G at this value
-    Heuristic heuristic{};     // bdpt: how strategies are weighted (balance)
-    int strategyMaxLength = 0; // bdpt, vcm: > 0 records per-strategy images up to this path length
-    float mergeRadius = -1;    // vcm: r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
-    float alpha = 0.75f;       // vcm: r(n) = r_0 n^((alpha-1)/2) in pass n
-    float largeStep = 0.3f;    // mlt, mmlt: probability of a large step (every number afresh)
-    float sigma = 0.01f;       // mlt, mmlt: a small step's standard deviation, per number
-    int bootstrap = 0;         // mlt, mmlt: samples that estimate b and choose the chains' starts (0: bootstrapSamples)
-    int chains = 256;          // mlt, mmlt: Markov chains, each its own random stream
-    bool fixedStart = false;   // mlt, mmlt: the deliberate mistake, every chain from one state
-    // Called after each pass with that pass's image and the non-finite samples dropped so far.
-    std::function<void(int pass, const std::vector<Vec3>& passImage, long long nonFinite)> onPass;
-};
-
-struct Splat {                 // a light-path contribution that lands on some pixel
-    int pixel;
-    Vec3 value;
-};
-
-// What one image row's samples leave besides their pixels' values; rows are merged in order.
-struct StrategySplat {          // bdpt --strategies: a contribution to image `image`
-    int pixel;
-    Vec3 value;
-    int image;                 // 2 (s,t) index + (0 unweighted, 1 MIS-weighted)
-};
-
-struct RowOutput {
-    std::vector<Splat> splats;
-    std::vector<StrategySplat> strategySplats;
-    long long nonFinite = 0;
-    double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: what the clamp removed
-};
-
-// Russian roulette ("Path tracing with Russian roulette"): continue with probability q and divide
-// the throughput by q, so E[beta 1(u<q)/q] = beta: the estimator's mean is unchanged, only paths
-// that would contribute little are cut. For pt and nee (and --roulette throughput) q follows the
-// throughput relative to the path's start (a light path starts at Phi/p, a camera path at 1),
-// capped below 1 so that every path ends; lt, ir and bdpt use the albedo (bdpt's banner: why).
-inline bool russianRoulette(Vec3& beta, float startThroughput, int bounces, const RenderOptions& opt, Rng& rng) {
-    if (bounces < opt.rrStart) return true;
-    float q = std::min(0.95f, maxComponent(beta) / startThroughput);
-    if (!(rng.uniform() < q)) return false;
-    beta = beta / q;
-    return true;
-}
-
-inline float powerHeuristic(float pdfA, float pdfB) {  // Veach's power heuristic, beta = 2
-    float a = pdfA * pdfA, b = pdfB * pdfB;
-    return a + b == 0 ? 0 : a / (a + b);
-}
-
-// -- (a) pt: "unidirectional (eye tracing)". Only p_{k,0}: emission counts when a path happens to
-// hit an emitter, so a point light (nothing can hit it) stays black: "especially for point lights".
-inline Vec3 radiancePT(const Scene& scene, const RenderOptions& opt, Ray ray, Rng& rng) {
-    Vec3 L(0), beta(1);
-    for (int bounces = 0;; ++bounces) {
-        Hit hit = intersect(scene, ray);
-        if (!hit.found()) break;
-        SurfacePoint sp = surfaceAt(scene, ray, hit);
-        Vec3 wo = -ray.d;
-        L += beta * emittedRadiance(scene, sp, wo);
-        if (bounces >= opt.maxDepth) break;
-        BsdfSample bs;
-        if (!sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
-        beta *= bs.weight;
-        if (!russianRoulette(beta, 1, bounces, opt, rng)) break;
-        ray = spawnRay(sp, bs.wi);
-    }
-    return L;
-}
-
-// Next event: one light point y for the vertex x, contribution
-//   f(x) |cos_x| * Le(y->x) |cos_y| / |x-y|^2 * V(x,y) / p_A(y)     (G(x,y) split as in section 4)
-// With mis, weighted against the chance that BSDF sampling had found y (power heuristic).
-inline Vec3 estimateDirect(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Rng& rng, bool mis) {
-    LightPoint lp = sampleLightPoint(scene, rng);
-    Vec3 d = lp.sp.p - sp.p;
-    float dist2 = dot(d, d);
-    if (!(dist2 > 0)) return Vec3(0);
-    Vec3 wi = d / std::sqrt(dist2);
-    float cosLight = lp.deltaPosition ? 1 : dot(-wi, lp.sp.ng);
-    if (cosLight <= 0) return Vec3(0);  // the back of a one-sided emitter
-    float pdfBsdf, pdfReverse;
-    Vec3 f = evalBsdf(scene, sp, wo, wi, Transport::Radiance, pdfBsdf, pdfReverse);
-    if (isBlack(f) || occluded(scene, shadowRay(sp, lp.sp))) return Vec3(0);
-    Vec3 contribution = f * lp.emission * (cosLight / (dist2 * lp.pdfArea));
-    if (mis && !lp.deltaPosition) contribution *= powerHeuristic(lp.pdfArea * dist2 / cosLight, pdfBsdf);
-    return contribution;
-}
-
-// -- (b) nee: "unidirectional + next event". Uses p_{k,0} and p_{k,1}: at every non-specular vertex
-// a light point is connected. Without mis an emitter hit by a BSDF-sampled ray is counted only
-// after the camera or a specular bounce (where no light point could have been connected), so
-// that no path is counted twice ("make sure no path is counted multiple times, either!").
-inline Vec3 radianceNEE(const Scene& scene, const RenderOptions& opt, Ray ray, Rng& rng) {
-    Vec3 L(0), beta(1);
-    bool afterDelta = true;   // the camera counts as a delta vertex
-    float pdfPrevBsdf = 0;    // solid-angle density of the BSDF sample that made this ray
-    Vec3 prevP = ray.o;       // the vertex that ray left (not its pushed-off origin)
-    for (int bounces = 0;; ++bounces) {
-        Hit hit = intersect(scene, ray);
-        if (!hit.found()) break;
-        SurfacePoint sp = surfaceAt(scene, ray, hit);
-        Vec3 wo = -ray.d;
-        Vec3 Le = emittedRadiance(scene, sp, wo);
-        if (!isBlack(Le)) {
-            if (afterDelta) {
-                L += beta * Le;
-            } else if (opt.mis) {  // the distance between the vertices, as estimateDirect's weight has it
-                Vec3 d = prevP - sp.p;
-                float dist2 = dot(d, d), pdfLight = pdfLightPoint(scene, sp.shape) * dist2 * std::sqrt(dist2) / dot(d, sp.ng);
-                L += beta * Le * powerHeuristic(pdfPrevBsdf, pdfLight);
-            }
-        }
-        if (bounces >= opt.maxDepth) break;
-        const Material& m = scene.materials[scene.shapes[sp.shape].material];
-        if (!isSpecular(m)) L += beta * estimateDirect(scene, sp, wo, rng, opt.mis);
-        BsdfSample bs;
-        if (!sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
-        afterDelta = bs.delta;
-        pdfPrevBsdf = bs.pdf;
-        beta *= bs.weight;
-        if (!russianRoulette(beta, 1, bounces, opt, rng)) break;
-        ray = spawnRay(sp, bs.wi);
-        prevP = sp.p;
-    }
-    return L;
-}
-
-// -- The camera connection shared by light tracing and BDPT's t=1 strategy. For a point x seen
-// by the pinhole, W_j(x->eye) G(x,eye) with the camera-side cosine: W_j cos_cam / d^2, divided by
-// the number of light paths per pass (one per pixel, so the W*H in W_j cancels it; forgetting
-// either is light tracing's classic bug, pbrt-v4 #347 and #456). The scene-side cosine stays
-// with the caller (section 4).
-struct CameraConnection {
-    int pixel = -1;          // -1: behind the camera, outside the image, or occluded
-    Vec3 toCamera;           // unit direction from x to the pinhole
-    float importance = 0;    // W_j cos_cam / (d^2 N_lightpaths)
-};
-
-inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& x) {
-    CameraConnection c;
-    const Camera& cam = scene.camera;
-    float fx, fy;
-    if (!projectToFilm(cam, x.p, fx, fy)) return c;
-    Vec3 d = cam.eye - x.p;
-    float dist2 = dot(d, d);
-    c.toCamera = d / std::sqrt(dist2);
-    float cosCamera = dot(-c.toCamera, cam.forward);
-    float lightPathsPerPass = float(cam.width) * cam.height;
-    c.importance = pixelImportance(cam, -c.toCamera) * cosCamera / (dist2 * lightPathsPerPass);
-    SurfacePoint eye;  // no surface: ng = 0
-    eye.p = cam.eye;
-    if (occluded(scene, shadowRay(x, eye))) return c;
-    c.pixel = std::min(int(fy), cam.height - 1) * cam.width + std::min(int(fx), cam.width - 1);
-    return c;
-}
-
-// -- Subpaths, shared by lt, ir and bdpt (slides: "Generating light paths", "Extension of paths
-// at hit points"). A subpath is a list of vertices, each with the throughput beta that reached it;
-// a connection joins a light-side vertex y to a camera-side vertex x and multiplies the one
-// factor G f f of T(pi) that neither side sampled: both scattering factors (their cosines
-// included, section 4) and 1/d^2; V is a shadow ray. Light tracing is the connection to the
-// pinhole (t = 1) alone, instant radiosity the connection of one camera vertex to stored light
-// vertices, bdpt every connection.
-struct PathVertex {
-    enum Type { Camera, Light, Surface } type = Surface;
-    SurfacePoint sp;        // p and ng for every type; sp.shape < 0 for the pinhole and point lights
-    Vec3 wo;                // surface: unit vector toward the previous vertex of its own subpath
-    float prevDist2 = 0;    // squared distance to that vertex
-    Vec3 beta;              // subpath throughput up to this vertex (light: Le/p_A or I/P(light))
-    double pdfFwd = 0, pdfRev = 0; // area densities for bdpt's MIS (see its banner below)
-    bool delta = false;          // a delta BSDF was sampled here
-    bool deltaPosition = false;  // the pinhole, a point light
-    int light = -1;              // the light y_0 was sampled on
-    double misSum = 0;           // bdpt: the MIS walk's sum beyond this vertex (cacheMisSums)
-    float continuation = 1;      // Roulette::Albedo: probability that a walk goes on from here
-};
-
-// Roulette::Albedo's continuation probability at a surface: its material's largest albedo
-// (SmallVCM's ContinuationProb). It depends on the vertex alone, not on the direction or on the
-// subpath's throughput, so both walks through the vertex have it, and MIS can count it in
-// pdfFwd and pdfRev alike; a throughput-relative q would depend on the other, unknown, subpath.
-inline float albedoContinuation(const Scene& scene, const SurfacePoint& sp) {
-    const Material& m = scene.materials[scene.shapes[sp.shape].material];
-    return m.type == Material::Glass ? 1.0f : std::min(1.0f, maxComponent(m.albedo));
-}
-
-// The cosine a density picks up at a vertex hit from direction w: |cos| on surfaces and area
-// lights, 1 at the pinhole and at point lights (no surface).
-inline float cosAt(const PathVertex& v, Vec3 w) {
-    return v.type == PathVertex::Surface || (v.type == PathVertex::Light && !v.deltaPosition) ? absDot(v.sp.ng, w) : 1;
-}
-
-// The emission direction density at a light vertex (or a surface that emits): cos/pi, front only.
-inline float pdfEmissionDirection(const PathVertex& light, Vec3 w) {
-    if (light.deltaPosition) return 1 / (4 * kPi);
-    return std::max(0.0f, dot(light.sp.ng, w)) / kPi;
-}
-
-// A vertex v looking along the unit direction w (away from v): the factor it multiplies into a
-// connection, its cosine included (section 4; 1 at the pinhole, whose W is connectToCamera's),
-// and two solid-angle densities: of sampling w having arrived along v.wo (pdf), and of sampling
-// v.wo having arrived along w (pdfReverse; surfaces only). MIS needs both at each end.
-inline Vec3 evalVertex(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
-    pdfReverse = 0;
-    if (v.type == PathVertex::Camera) {
-        pdf = pdfCameraDirection(scene.camera, w);
-        return Vec3(1);
-    }
-    if (v.type == PathVertex::Light) {
-        pdf = pdfEmissionDirection(v, w);
-        return Vec3(v.deltaPosition ? 1 : std::max(0.0f, dot(v.sp.ng, w)));
-    }
-    return evalBsdf(scene, v.sp, v.wo, w, mode, pdf, pdfReverse);
-}
-
-// A solid-angle density as an area density at the vertex `next`, a distance^2 away along w:
-// p_A = p_omega |cos_next| / d^2.
-inline double toArea(double pdfOmega, const PathVertex& next, Vec3 w, float dist2) { return pdfOmega * cosAt(next, w) / dist2; }
-
-// The density, up to the delta itself, with which a specular vertex sends its subpath along the
-// unit direction w (away from the vertex): eta_w^2 |w . ns|, eta_w the index on w's side. Mirrors
-// and Snell's law keep the etendue eta^2 |cos| d omega (about the normal the event used), so the
-// delta is one in that measure whichever way a strategy crosses the vertex, and cancels; this
-// factor does not (bdpt's banner, section 8: why it matters).
-inline float specularDensity(const Scene& scene, const SurfacePoint& sp, Vec3 w) {
-    const Material& m = scene.materials[scene.shapes[sp.shape].material];
-    float eta = m.type == Material::Glass && dot(w, sp.ng) < 0 ? m.ior : 1;  // the back side is inside
-    return sqr(eta) * absDot(w, sp.ns);
-}
-
-// The two solid-angle densities at a subpath vertex v whose subpath moved on along w: of sampling
-// w (having arrived along v.wo) and of sampling v.wo having arrived along w. A delta event's are
-// specularDensity's, every other vertex's evalVertex's.
-inline void scatteringDensities(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
-    if (!v.delta) {
-        evalVertex(scene, v, w, mode, pdf, pdfReverse);
-        return;
-    }
-    pdf = specularDensity(scene, v.sp, w);
-    pdfReverse = specularDensity(scene, v.sp, v.wo);
-}
-
-// Adds v, reached from path.back(), to a subpath: v's pdfFwd and the pdfRev of the vertex before
-// path.back(), both evaluated on the vertices' positions (not on the sampled direction, which
-// leaves from an offset origin), so that every strategy's density of one path is computed on the
-// same geometry. Each carries the continuation probability of the vertex it was sampled at.
-inline void appendVertex(const Scene& scene, std::vector<PathVertex>& path, const PathVertex& vertex, Transport mode) {
-    path.push_back(vertex);
-    const size_t i = path.size() - 1;
-    PathVertex& v = path[i];
-    const PathVertex& prev = path[i - 1];
-    float pdf, pdfReverse;
-    scatteringDensities(scene, prev, -v.wo, mode, pdf, pdfReverse);
-    v.pdfFwd = toArea(pdf * prev.continuation, v, v.wo, v.prevDist2);
-    if (i >= 2) path[i - 2].pdfRev = toArea(pdfReverse * prev.continuation, path[i - 2], prev.wo, prev.prevDist2);
-    if (prev.delta && scene.deltaDensityOne) {  // the deliberate mistake: pbrt's area density of 1
-        v.pdfFwd = prev.continuation;
-        if (i >= 2) path[i - 2].pdfRev = prev.continuation;
-    }
-}
-
-// Extends a subpath by BSDF sampling, each new vertex by appendVertex.
-inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Vec3 beta, int maxSurfaceVertices,
-                       Transport mode, Rng& rng, std::vector<PathVertex>& path) {
-    const float start = maxComponent(beta);  // Russian roulette follows the throughput relative to it
-    for (int bounces = 0; bounces < maxSurfaceVertices; ++bounces) {
-        Hit hit = intersect(scene, ray);
-        if (!hit.found()) return;
-        PathVertex v;
-        v.sp = surfaceAt(scene, ray, hit);
-        v.beta = beta;
-        Vec3 d = path.back().sp.p - v.sp.p;
-        v.prevDist2 = dot(d, d);
-        if (!(v.prevDist2 > 0)) return;
-        v.wo = d / std::sqrt(v.prevDist2);
-        if (opt.roulette == Roulette::Albedo) v.continuation = albedoContinuation(scene, v.sp);
-        appendVertex(scene, path, v, mode);
-        if (bounces + 1 == maxSurfaceVertices) return;
-        BsdfSample bs;
-        if (!sampleBsdf(scene, v.sp, v.wo, mode, rng, bs)) return;
-        path.back().delta = bs.delta;
-        beta *= bs.weight;
-        if (opt.roulette == Roulette::Albedo) {
-            if (!(rng.uniform() < v.continuation)) return;
-            beta = beta / v.continuation;
-        } else if (opt.roulette == Roulette::Throughput && !russianRoulette(beta, start, bounces, opt, rng)) {
-            return;  // bounces so far, as in radianceNEE
-        }
-        ray = spawnRay(v.sp, bs.wi);
-    }
-}
-
-// Subpaths of up to --maxdepth bounces, or (mmlt) of exactly `vertices` vertices where they survive.
-inline void cameraSubpath(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, Rng& rng,
-                          std::vector<PathVertex>& path, int vertices = 0) {
-    path.clear();
-    PathVertex z0;
-    z0.type = PathVertex::Camera;
-    z0.sp.p = scene.camera.eye;
-    z0.beta = Vec3(1);  // W_j cos / p = 1 for a pixel sample
-    z0.pdfFwd = 1;
-    z0.deltaPosition = true;  // never hit (no t = 0 strategy), but connected to: not a delta BSDF
-    path.push_back(z0);
-    Ray ray = cameraRay(scene.camera, filmX, filmY);
-    randomWalk(scene, opt, ray, Vec3(1), vertices > 0 ? vertices - 1 : opt.maxDepth + 1, Transport::Radiance, rng, path);
-}
-
-// y_0: a point sampled on a light, its throughput Le/p_A (or I/P(light)) and density p_A.
-inline PathVertex lightVertex(const LightPoint& lp) {
-    PathVertex y0;
-    y0.type = PathVertex::Light;
-    y0.sp = lp.sp;
-    y0.light = lp.light;
-    y0.beta = lp.emission / lp.pdfArea;
-    y0.pdfFwd = lp.pdfArea;
-    y0.deltaPosition = lp.deltaPosition;
-    return y0;
-}
-
-inline void lightSubpath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<PathVertex>& path, int vertices = 0) {
-    path.clear();
-    EmissionSample es = sampleEmission(scene, rng);
-    path.push_back(lightVertex(es.point));
-    const PathVertex& y0 = path[0];
-    if (isBlack(es.weight)) return;
-    Ray ray = es.point.deltaPosition ? Ray{y0.sp.p, es.dir, kInf} : spawnRay(y0.sp, es.dir);
-    randomWalk(scene, opt, ray, es.weight, vertices > 0 ? vertices - 1 : opt.maxDepth, Transport::Importance, rng, path);
-}
-
-// Mirrors and glass cannot be connected to: the direction is fixed by the other vertex.
-inline bool connectable(const Scene& scene, const PathVertex& v) {
-    return v.type != PathVertex::Surface || !isSpecular(scene.materials[scene.shapes[v.sp.shape].material]);
-}
-
-// A light-side vertex seen through the pinhole (the t = 1 connection); pixel -1 if it is not seen.
-inline Vec3 connectToPinhole(const Scene& scene, const PathVertex& y, int& pixel) {
-    CameraConnection c = connectToCamera(scene, y.sp);
-    pixel = c.pixel;
-    if (c.pixel < 0) return Vec3(0);
-    float pdf, pdfReverse;
-    return y.beta * evalVertex(scene, y, c.toCamera, Transport::Importance, pdf, pdfReverse) * c.importance;
-}
-
-// The segment from a light-side vertex y to a camera-side vertex x, both ends evaluated toward
-// each other by evalVertex (the camera side is skipped when y already contributes nothing).
-struct Connection {
-    Vec3 w;           // unit, from y to x
-    float dist2 = 0;
-    Vec3 fy, fx;
-    float pdfY = 0, pdfYReverse = 0, pdfX = 0, pdfXReverse = 0;
-};
-
-inline void evalConnection(const Scene& scene, const PathVertex& y, const PathVertex& x, Connection& c) {
-    Vec3 d = x.sp.p - y.sp.p;
-    c.dist2 = dot(d, d);
-    if (!(c.dist2 > 0)) return;
-    c.w = d / std::sqrt(c.dist2);
-    c.fy = evalVertex(scene, y, c.w, Transport::Importance, c.pdfY, c.pdfYReverse);
-    if (!isBlack(c.fy)) c.fx = evalVertex(scene, x, -c.w, Transport::Radiance, c.pdfX, c.pdfXReverse);
-}
-
-// Light-side vertex y joined to camera-side vertex x, before the visibility test.
-inline Vec3 connectVertices(const PathVertex& y, const PathVertex& x, const Connection& c) {
-    return c.dist2 > 0 ? y.beta * c.fy * c.fx * x.beta / c.dist2 : Vec3(0);
-}
-
-inline bool mutuallyVisible(const Scene& scene, const PathVertex& a, const PathVertex& b) {
-    return !occluded(scene, shadowRay(a.sp, b.sp));
-}
-
-// -- (c) lt: "next event (light tracing)". Paths start on the lights with p(x,Theta) = Le|cos|/Phi
-// and every vertex is connected to the pinhole (p_{k,k}... the strategies with one camera
-// vertex). Importance flows here, so BSDFs are sampled in Transport::Importance. It renders the
-// floor caustic under the glass sphere (light -> glass -> floor -> eye) that eye paths find only
-// by hitting the light after the refraction (pt, nee: noisy) and never for a point light: no
-// connection can pass through glass, but a light path goes through it by sampling alone.
-inline void traceLightPath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<Splat>& splats) {
-    thread_local std::vector<PathVertex> light;
-    lightSubpath(scene, opt, rng, light);
-    for (const PathVertex& y : light) {
-        int pixel = -1;
-        Vec3 c = connectable(scene, y) ? connectToPinhole(scene, y, pixel) : Vec3(0);
-        if (pixel >= 0) splats.push_back({pixel, c});
-    }
-}
-
-// -- (d), (e) ir: "instant radiosity" (Keller 1997), "(clamped)". A few light paths leave virtual
-// point lights (VPLs) at their non-specular vertices; the first non-specular vertex x of a camera
-// path gathers from all of them:
-//   sum_VPL  beta_y / N  f_y(y->x) f_x(y->x->eye) G(x,y) V(x,y)
-// Unbiased for the paths it can make, but G = cos cos / d^2 is unbounded where x and y come close
-// (corners): the bright splotches of panel (d). --clamp C replaces G by min(G, C): panel (e),
-// smooth but darker, and the loss does not shrink with more passes (bias; the same 1/d^2 was
-// pbrt-v3 #73).
-struct Vpl {
-    PathVertex y;       // a light-subpath vertex, its beta divided by the number of VPL paths
-    int bounces = 0;    // scattering vertices before y on its light path
-};
-
-inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, int pass) {
-    std::vector<Vpl> vpls;
-    std::vector<PathVertex> path;
-    for (int i = 0; i < opt.vplPaths; ++i) {
-        Rng rng = makeRng(opt.seed ^ 0x5bd1e995ULL, uint64_t(i), uint64_t(pass));
-        lightSubpath(scene, opt, rng, path);
-        for (size_t k = 0; k < path.size(); ++k) {
-            if (!connectable(scene, path[k])) continue;
-            vpls.push_back({path[k], int(k)});
-            vpls.back().y.beta = path[k].beta / float(opt.vplPaths);
-        }
-    }
-    return vpls;
-}
-
-inline Vec3 gatherVpls(const Scene& scene, const RenderOptions& opt, const std::vector<Vpl>& vpls, const PathVertex& x,
-                       int cameraBounces, RowOutput& out) {
-    Vec3 sum(0);
-    for (const Vpl& v : vpls) {
-        if (v.bounces + cameraBounces + 1 > opt.maxDepth) continue;
-        Connection k;
-        evalConnection(scene, v.y, x, k);
-        Vec3 c = connectVertices(v.y, x, k);
-        if (isBlack(c) || !mutuallyVisible(scene, v.y, x)) continue;
-        if (opt.clamp > 0) {
-            float G = absDot(k.w, x.sp.ng) * cosAt(v.y, k.w) / k.dist2;
-            double before = average(c);
-            if (G > opt.clamp) c *= opt.clamp / G;
-            out.energyUnclamped += before;
-            out.energyClamped += average(c);
-        }
-        sum += c;
-    }
-    return sum;
-}
-
-// The camera half of ir: follow specular bounces, gather at the first non-specular vertex.
-inline Vec3 radianceIR(const Scene& scene, const RenderOptions& opt, Ray ray, Rng& rng, const std::vector<Vpl>& vpls,
-                       RowOutput& out) {
-    Vec3 L(0), beta(1);
-    for (int bounces = 0; bounces <= opt.maxDepth; ++bounces) {
-        Hit hit = intersect(scene, ray);
-        if (!hit.found()) break;
-        PathVertex x;
-        x.sp = surfaceAt(scene, ray, hit);
-        x.wo = -ray.d;
-        x.beta = Vec3(1);
-        L += beta * emittedRadiance(scene, x.sp, x.wo);
-        if (connectable(scene, x)) return L + beta * gatherVpls(scene, opt, vpls, x, bounces, out);
-        BsdfSample bs;
-        if (bounces == opt.maxDepth || !sampleBsdf(scene, x.sp, x.wo, Transport::Radiance, rng, bs)) break;
-        beta *= bs.weight;
-        ray = spawnRay(x.sp, bs.wi);
-    }
-    return L;
-}
-
-// -- (f) bdpt: "bidirectional path tracing" (Lafortune & Willems 1993; Veach & Guibas 1995).
-// One camera subpath z_0..z_{t-1} (z_0 the pinhole) and one light subpath y_0..y_{s-1} (y_0 on a
-// light) per sample; every pair is connected, which makes the path x_0..x_k = y_0..y_{s-1}
-// z_{t-1}..z_0 of k = s+t-1 segments with the strategy the slides call p_{k,s} ("m vertices
-// from the light"): s = 0 the camera path hits an emitter, s = 1 next event, t = 1 light
-// tracing, the rest "connect paths deterministically (every pair of two hit points)". Each
-// strategy alone is unbiased for the paths it can make; MIS combines them: C = sum w_ij C_ij.
-//
-// The weights are computed pbrt-style: every vertex stores pdfFwd, the area density with which
-// its own subpath sampled it, and pdfRev, the density with which the other side would have. On
-// the path x_0..x_k (x_0 on the light), strategy s samples x_0..x_{s-1} from the light and
-// x_s..x_k from the camera; strategy s+1 differs only in x_s, which changes sides:
-//     p_{s+1}/p_s = pdfRev(x_s) / pdfFwd(x_s),   (x_s's own subpath sampled it with pdfFwd)
-// and likewise p_{s-1}/p_s = pdfRev(x_{s-1}) / pdfFwd(x_{s-1}) on the light side. So
-// r_i = p_i/p_s costs one multiplication per vertex, and a heuristic maps the r_i to w_s:
-//     balance w_s = 1/(1 + sum r_i)   power w_s = 1/(1 + sum r_i^2)   (Veach ch. 9)
-//     max     w_s = 1 if no r_i > 1   (the slides' "choose p_X(pi) maximum"; ties, to 1e-4, share)
-//     uniform w_s = 1/(1 + #{r_i > 0})   (every strategy able to make the path, equally)
-// We chose the ratio walk (each factor is a density one can point at on the slide, and one walk
-// serves all four heuristics), with SmallVCM's one saving: beyond the two vertices next to the
-// connection the walk is the same for every connection, so each subpath sums it once per vertex,
-//     misSum_i = ratio_i^e ([strategy i able] + misSum_{i-1}),  e = 1 balance, 2 power, 0 uniform,
-// and a weight costs O(1) instead of O(k). The max heuristic, whose ties need every r_i, walks on.
-// (vcm, section (g), adds one term per vertex to the walk and the sums: the merge there.)
-// A strategy that would have to connect at a delta vertex (mirror, glass) or hit a point light is
-// skipped: its density is 0 (counting it gave single fireflies of 80,000x in Mitsuba #132, and in
-// pbrt-v4 #326 and SmallVCM #5). Every other strategy crosses a specular vertex x_j inside one
-// subpath, sampling x_{j+1} from x_j or x_{j-1} from x_j: the delta cancels between strategies,
-// the geometry around it does not. The delta is one in the measure eta^2 |cos| d omega, which
-// mirrors and Snell's law keep (etendue), the same whichever way a strategy crosses x_j; left in
-// pdfFwd and pdfRev are eta^2 |cos| at x_j (specularDensity) and the |cos|/d^2 of the conversion
-// to area at the next vertex. Through a chain a S..S b between non-specular a and b the chain's
-// Jacobians cancel too, and the two directions' densities stand as
-//     p(a ... b) / p(b ... a) = [p_omega(a) / (eta_a^2 |cos_a|)] / [p_omega(b) / (eta_b^2 |cos_b|)].
-// pbrt stores the density after a delta event as an area density of 1 (--delta-density-one
-// restores it), which drops the |cos|/d^2 at the vertex after it. For the caustic under
-// glass-box's glass ball, seen directly (L S S D E, only s = 0 and t = 1 make it), the true
-// p_{s=0}/p_{t=1} is p_cam(D) q_D / p_A(L), about 0.005 (test `specular chains`); the floor point
-// lies millimetres from the ball, a 1/d^2 that pbrt's convention leaves to s = 0 alone, so s = 0
-// kept 79% of that light, t = 1 21% (0.6% and 99.4% with the true densities), and bdpt's error
-// in the caustic was 80x light tracing's alone (test `a caustic seen directly`). The walk is in double:
-// with sharp lobes near corners one density reaches 1e-31 and another 1e+8, and in float the
-// cached sums overflowed to inf beside ratios that underflowed to 0 (0 x inf = NaN, a lost sample).
-// Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues
-// from a surface vertex with q = the material's albedo (albedoContinuation), so every density
-// sampled there, pdfFwd of the next vertex and pdfRev of the one before, carries that q, and the
-// strategy whose subpath survived more roulette gets less weight. A throughput-relative q (pt's)
-// cannot be counted so: the other subpath's q at a vertex depends on its unknown throughput.
-// Measured by `build/efficiency --alternatives` (64x64, 256 samples, 4 seeds, efficiency against
-// nee --mis, with the densities through specular vertices of issue 24):
-//   roulette                   cornell   cornell-glass   indirect   glass-box   (cost/sample)
-//   throughput after 3 (pt's)   0.74x        1.85x          6.52x       2.07x      1
-//   albedo, in the densities    0.82x        3.35x          7.56x       2.67x      0.62-0.72
-//   none (at most 9 bounces)    0.51x        1.92x          4.54x       1.69x      1.44-1.53
-// so albedo, counted in the densities (not counting it was 0.89x against 0.90x on cornell,
-// measured before issue 24). Its lower error per sample is not why: throughput roulette, and no
-// roulette at all, reach lower MSE at equal samples on glass-box (1.09e-4 and 0.91e-4 against
-// 1.17e-4) but cost 1.4x and 2x as much. On glass-box 79% of the remaining squared error lies in
-// the pixels that see a mirror or glass (make efficiency's last column), in paths like the floor
-// caustic seen through glass (L S S D S S E), which only s = 0 makes (panel (f)'s SDS limit).
-enum class Heuristic { Balance, Power, Max, Uniform };
-
-// A subpath, or the first vertices of one: bdpt's own vectors, and vcm's light subpaths, which
-// lie one after another in arrays shared by the whole pass.
-struct Subpath {
-    const PathVertex* v = nullptr;
-    int n = 0;
-    Subpath() = default;
-    Subpath(const PathVertex* first, int count) : v(first), n(count) {}
-    Subpath(const std::vector<PathVertex>& path) : v(path.data()), n(int(path.size())) {}
-    const PathVertex& operator[](int i) const { return v[i]; }
-    int size() const { return n; }
-};
-
-// A connection at vertex i is possible if neither i nor the vertex before it is a delta event: a
-// camera path never starts at i = 0 (no t = 0 strategy), a light path there unless from a point.
-inline bool strategyAble(Subpath path, int i) {
-    if (i == 0) return path[0].type == PathVertex::Light && !path[0].deltaPosition;
-    return !path[i].delta && !path[i - 1].delta;
-}
-
-// A merge at vertex i (vcm below): a surface a light subpath can land on and stop, so neither
-// the light itself nor the pinhole nor a delta event.
-inline bool mergeAble(const PathVertex& v) { return v.type == PathVertex::Surface && !v.delta; }
-
-inline double misPower(Heuristic heuristic, double r) {  // what each r_i adds to the sum
-    return heuristic == Heuristic::Power ? r * r : heuristic == Heuristic::Uniform ? 1.0 : r;
-}
-
-// pdfRev/pdfFwd of a vertex changing sides. pdfFwd is > 0 for every vertex a subpath sampled; a 0
-// (a cosine of exactly 0) makes the other strategies' densities 0 relative to it, not infinite.
-inline double densityRatio(double pdfRev, double pdfFwd) { return pdfFwd > 0 ? pdfRev / pdfFwd : 0; }
-
-// r^e times a cached sum: 0 when either is, so that an underflowed ratio never meets an
-// overflowed sum (0 x inf): every strategy beyond a density of 0 shares that factor.
-inline double scaledSum(double rPower, double sum) { return rPower == 0 || sum == 0 ? 0 : rPower * sum; }
-
-// What the strategies that move vertex i (and those beyond it) add to the walk, before the
-// factor ratio_i^e: [strategy i able] + [merge at i] (mergeEta pdfFwd_i)^e + misSum_{i-1}.
-// vcm's merges add the middle term (mergeEta = pi r^2 N_light, its banner: why); bdpt passes 0.
-inline double misTerms(Heuristic heuristic, Subpath path, int i, double mergeEta) {
-    double merge = mergeEta > 0 && mergeAble(path[i]) ? misPower(heuristic, mergeEta * path[i].pdfFwd) : 0;
-    return strategyAble(path, i) + merge + (i > 0 ? path[i - 1].misSum : 0);
-}
-
-// misSum_i of every vertex of a finished subpath (its pdfRev all known).
-inline void cacheMisSums(Heuristic heuristic, std::vector<PathVertex>& path, double mergeEta = 0) {
-    for (size_t i = 0; i < path.size(); ++i) {
-        PathVertex& v = path[i];
-        v.misSum = scaledSum(misPower(heuristic, densityRatio(v.pdfRev, v.pdfFwd)), misTerms(heuristic, path, int(i), mergeEta));
-    }
-}
-
-// Where the two subpaths meet, the reverse densities of the (up to) four vertices next to the
-// junction are not the stored ones: pt = camera[t-1], qs = light[s-1] and the one before each.
-struct Junction {
-    double ptRev = 0, ptMinusRev = 0, qsRev = 0, qsMinusRev = 0;
-    bool lightEndDelta = false;  // a merge: light[s-1] sampled its way to the merged vertex
-    // A merge may bring the light side's walk along: light[s-1]'s pdfFwd and misTerms, so that it
-    // reads no vertex of its light subpath (lightTerms < 0: walk the subpath).
-    double qsPdfFwd = 0, lightTerms = -1;
-};
-
-// The junction of strategy (s,t): the connection c joins qs and pt (unused for s = 0).
-inline Junction connectionJunction(const Scene& scene, Subpath light, int s, Subpath camera, int t, const Connection& c) {
-    Junction j;
-    const PathVertex &pt = camera[t - 1], *ptMinus = t > 1 ? &camera[t - 2] : nullptr;
-    if (s > 0) {  // each density sampled at a connection vertex carries that vertex's continuation
-        const PathVertex &qs = light[s - 1], *qsMinus = s > 1 ? &light[s - 2] : nullptr;
-        j.ptRev = t > 1 ? toArea(c.pdfY * qs.continuation, pt, c.w, c.dist2) : 0;  // the pinhole is never sampled (no t = 0)
-        j.qsRev = toArea(c.pdfX * pt.continuation, qs, c.w, c.dist2);
-        if (qsMinus) j.qsMinusRev = toArea(c.pdfYReverse * qs.continuation, *qsMinus, qs.wo, qs.prevDist2);
-        if (ptMinus) j.ptMinusRev = toArea(c.pdfXReverse * pt.continuation, *ptMinus, pt.wo, pt.prevDist2);
-    } else {  // pt lies on an emitter: how a light path would have started there
-        j.ptRev = pdfLightPoint(scene, pt.sp.shape);
-        if (ptMinus) j.ptMinusRev = toArea(pdfEmissionDirection(pt, pt.wo), *ptMinus, pt.wo, pt.prevDist2);
-    }
-    return j;
-}
-
-// For the path light[0..s-1] + camera[t-1..0] met at `j`: the sum over every other strategy i
-// able to make it of misPower(p_i / p_ref), where p_ref = reference * p_{s,t} (the density of
-// the strategy being weighted), and for the max heuristic how many are larger or equal.
-// Connections: the strategy that moves vertex x to the other side multiplies p by
-// pdfRev(x)/pdfFwd(x). Merges (mergeEta > 0, vcm): the merge at x, once x has moved to the camera
-// side (light side), has the density p * mergeEta * pdfFwd(x) with its own subpath's pdfFwd.
-struct MisSum {
-    double sum = 0;
-    int larger = 0, equal = 0;
-};
-
-inline MisSum misWalk(Subpath light, int s, Subpath camera, int t, Heuristic heuristic, double mergeEta, const Junction& j,
-                      double reference = 1) {
-    auto cameraRev = [&](int i) { return i == t - 1 ? j.ptRev : i == t - 2 ? j.ptMinusRev : camera[i].pdfRev; };
-    auto lightRev = [&](int i) { return i == s - 1 ? j.qsRev : i == s - 2 ? j.qsMinusRev : light[i].pdfRev; };
-    // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
-    auto cameraDelta = [&](int i) { return i != t - 1 && camera[i].delta; };
-    auto lightDelta = [&](int i) { return (i != s - 1 || j.lightEndDelta) && light[i].delta; };
-    const bool cached = heuristic != Heuristic::Max;
-    MisSum m;
-    // The maximum heuristic needs ties: two strategies of equal density (common in symmetric
-    // scenes) computed in different orders can each see the other as larger by a rounding error,
-    // and both would get weight 0. Within 1e-4 they count as equal and share the path.
-    constexpr double kTie = 1e-4;
-    auto add = [&](double r) {  // r = p_i / p_{s,t} of one other strategy i
-        m.sum += misPower(heuristic, r / reference);
-        m.larger += r > reference * (1 + kTie);
-        m.equal += std::fabs(r - reference) <= reference * kTie;
-    };
-    auto addCached = [&](double r, double misSum) { m.sum += scaledSum(misPower(heuristic, r / reference), misSum); };
-    double r = 1;
-    for (int i = t - 1; i > 0; --i) {  // more light vertices: strategies (s+1, t-1), ...
-        if (cached && i < t - 2) { addCached(r, camera[i].misSum); break; }
-        r *= densityRatio(cameraRev(i), camera[i].pdfFwd);
-        if (!cameraDelta(i) && !cameraDelta(i - 1)) add(r);
-        bool becomesLightVertex0 = s == 0 && i == t - 1;  // the light's own vertex is not merged
-        if (mergeEta > 0 && !cameraDelta(i) && !becomesLightVertex0) add(r * mergeEta * camera[i].pdfFwd);
-    }
-    if (cached && j.lightTerms >= 0) {
-        m.sum += scaledSum(misPower(heuristic, densityRatio(j.qsRev, j.qsPdfFwd) / reference), j.lightTerms);
-        return m;
-    }
-    r = 1;
-    for (int i = s - 1; i >= 0; --i) {  // more camera vertices: strategies (s-1, t+1), ...
-        if (cached && i < s - 2) { addCached(r, light[i].misSum); break; }
-        r *= densityRatio(lightRev(i), light[i].pdfFwd);
-        bool deltaBefore = i > 0 ? lightDelta(i - 1) : light[0].deltaPosition;
-        if (!lightDelta(i) && !deltaBefore) add(r);
-        if (mergeEta > 0 && i > 0 && !lightDelta(i)) add(r * mergeEta * light[i].pdfFwd);
-    }
-    return m;
-}
-
-// w_{s,t} for the path that strategy (s,t) made from light[0..s-1] and camera[0..t-1], joined by
-// the connection c (unused for s = 0), after cacheMisSums on both subpaths (with the same
-// mergeEta: vcm's; 0 for bdpt).
-// The light seen directly (k = 1) is left to s = 0, as in pbrt: (1,1) gets weight 0, so a point
-// light stays invisible to the camera in bdpt as in pt and nee (lt shows it as one bright pixel).
-inline float misWeight(const Scene& scene, Subpath light, int s, Subpath camera, int t, Heuristic heuristic, const Connection& c,
-                       double mergeEta = 0) {
-    if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
-    MisSum m = misWalk(light, s, camera, t, heuristic, mergeEta, connectionJunction(scene, light, s, camera, t, c));
-    return heuristic != Heuristic::Max ? float(1 / (1 + m.sum)) : m.larger ? 0 : 1.0f / (1 + m.equal);
-}
-
-// The unweighted contribution of strategy (s,t) and, for s > 0, its connection c; for t = 1 also
-// the pixel it lands on. light[0] serves s = 1 as well: y_0 is a point sampled on a light by
-// power and area, exactly next event's light sample, so s = 1 is next-event estimation. A fresh
-// light point for every camera vertex instead (pbrt, SmallVCM) changed the error by 1.5% at most
-// and cost 5-13% more time (`make efficiency`, the four scenes): one y_0 serves them all.
-// Inlined always into both callers (connectSubpaths, mmlt's strategySample): with two callers
-// GCC stopped inlining it, and bdpt's samples cost 2.4% more instructions (callgrind, cornell).
-[[gnu::always_inline]]
-inline Vec3 connectStrategy(const Scene& scene, Subpath light, int s, Subpath camera, int t, Connection& c, int& pixel) {
-    const PathVertex& pt = camera[t - 1];
-    if (s == 0) {  // the camera subpath's last vertex is on an emitter
-        if (pt.type != PathVertex::Surface) return Vec3(0);
-        return pt.beta * emittedRadiance(scene, pt.sp, pt.wo);
-    }
-    const PathVertex& qs = light[s - 1];
-    if (!connectable(scene, qs) || (t > 1 && !connectable(scene, pt))) return Vec3(0);
-    evalConnection(scene, qs, pt, c);
-    if (isBlack(c.fy)) return Vec3(0);
-    if (t == 1) return connectToPinhole(scene, qs, pixel);  // light tracing (c serves the weight)
-    Vec3 contribution = connectVertices(qs, pt, c);
-    return isBlack(contribution) || !mutuallyVisible(scene, qs, pt) ? Vec3(0) : contribution;
-}
-
-// Per-strategy images (--strategies): strategy (s,t) with path length k = s+t-1 <= maxLength,
-// then (vcm) one image per path length of all its merges.
-inline int strategyIndex(int s, int t) {  // rows by k, s = 0..k within a row
-    int k = s + t - 1;
-    return k * (k + 1) / 2 - 1 + s;
-}
-inline int mergeImageIndex(int k, int maxLength) { return maxLength * (maxLength + 3) / 2 + k - 1; }
-inline int strategyImageCount(const RenderOptions& opt) {  // vcm: one merge image per length
-    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
-    return opt.method == Method::VCM ? mergeImageIndex(L + 1, L) : L * (L + 3) / 2;
-}
-
-// The light subpath of pixel `pixel` in pass `pass`: a stream of its own, apart from the pixel's
-// camera stream, so that vcm, which traces all light subpaths of a pass first, makes the same
-// ones as bdpt (--radius 0 gives bdpt's image bit for bit).
-inline Rng lightPathRng(const RenderOptions& opt, int pixel, int pass) {
-    return makeRng(opt.seed ^ 0x3c6ef372fe94f82bULL, uint64_t(pixel), uint64_t(pass));
-}
-
-// Every connection (s,t) of one camera subpath with one light subpath, MIS-weighted: bdpt's
-// estimate, and the connection half of vcm's (whose merges, mergeEta > 0, share the weights).
-inline Vec3 connectSubpaths(const Scene& scene, const RenderOptions& opt, Subpath light, const std::vector<PathVertex>& camera,
-                            int here, double mergeEta, RowOutput& out) {
-    Vec3 L(0);
-    for (int t = 1; t <= int(camera.size()); ++t)
-        for (int s = 0; s <= light.size(); ++s) {
-            int bounces = s + t - 2;
-            if (bounces < 0 || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
-            bool record = opt.strategyMaxLength > 0 && s + t - 1 <= opt.strategyMaxLength;
-            if (s == 1 && t == 1 && !record) continue;  // weight 0 (misWeight): spare its shadow ray
-            int pixel = here;
-            Connection connection;
-            Vec3 c = connectStrategy(scene, light, s, camera, t, connection, pixel);
-            if (isBlack(c)) continue;
-            float w = misWeight(scene, light, s, camera, t, opt.heuristic, connection, mergeEta);
-            if (t == 1) out.splats.push_back({pixel, c * w});
-            else L += c * w;
-            if (record) {
-                int k = strategyIndex(s, t);
-                out.strategySplats.push_back({pixel, c, 2 * k});
-                out.strategySplats.push_back({pixel, c * w, 2 * k + 1});
-            }
-        }
-    return L;
-}
-
-// One bdpt sample: a camera subpath through (filmX, filmY) in pixel `here`, a light subpath, and
-// all their connections (mlt, section (h), evaluates its states with it).
-inline Vec3 bdptSample(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, int here, Rng& cameraRng,
-                       Rng& lightRng, RowOutput& out) {
-    thread_local std::vector<PathVertex> camera, light;
-    cameraSubpath(scene, opt, filmX, filmY, cameraRng, camera);
-    lightSubpath(scene, opt, lightRng, light);
-    cacheMisSums(opt.heuristic, camera);
-    cacheMisSums(opt.heuristic, light);
-    return connectSubpaths(scene, opt, light, camera, here, 0, out);
-}
-
-inline Vec3 radianceBDPT(const Scene& scene, const RenderOptions& opt, int x, int y, int pass, Rng& rng, RowOutput& out) {
-    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
-    int here = y * scene.camera.width + x;
-    Rng lightRng = lightPathRng(opt, here, pass);
-    return bdptSample(scene, opt, filmX, filmY, here, rng, lightRng, out);
-}
-
-// -- (g) vcm: "Vertex Connection and Merging (VCM, later)" (Georgiev, Krivanek, Davidovic and
-// Slusallek 2012; Hachisuka, Pantaleoni and Jensen 2012). Panel (f)'s limit: a connection needs
-// two non-specular vertices side by side, so a path L S D S E (a caustic on the floor seen in a
-// mirror, or a point light in a glass ball seen through glass) has no strategy at all; only s = 0
-// remains when the light has area, and nothing for a point light. Merging adds one: a light
-// subpath that lands at y within radius r of a camera vertex x counts as if it had reached x,
-//     C_merge = beta_camera(x) f(x) beta_light(y) / (pi r^2 N),
-// a density estimate over the N = width x height light subpaths of the pass (a disk kernel,
-// photon mapping's). Its density, relative to the connection strategy that samples x from the
-// camera, is that of landing on the disk:
-//     p_merge(x) = p_{s,t} * pi r^2 N * p_light(x)      (p_light(x): the light side's pdfFwd of x)
-// so in the ratio walk of misWeight a merge is one more term per non-specular vertex, and
-// mergeEta = pi r^2 N the only new number. Every heuristic applies as to connections (the max
-// heuristic, uniform: unchanged definitions over the larger set of strategies).
-// The kernel makes the merge biased: it blurs over the disk, so a pass's estimate is too smooth
-// by about r. Each pass shrinks the radius, r(n) = r_0 n^((alpha-1)/2) in pass n (the closed form
-// of Knaus and Zwicker 2011's radius recursion for progressive photon mapping, as SmallVCM has it), slowly enough (alpha in (0,1)) that the variance, which grows like
-// 1/r^2, is still averaged away: bias and variance both vanish as passes go on (consistent), and
-// the error falls more slowly than -1/2 in log(error) against log(time).
-// Per pass: trace every pixel's light subpath (the same as bdpt's), keep them all, put their
-// mergeable vertices in a hash grid; then every camera subpath makes bdpt's connections with its
-// own pixel's light subpath, and at each of its non-specular vertices merges with the vertices
-// in the grid within r.
-
-// A uniform grid of cells of side 2r, hashed into as many buckets as points: a query sphere of
-// radius r then overlaps at most 2 cells per axis, 8 in all. Two cells may share a bucket; a
-// bucket is visited once. The points are kept in bucket order, so that a query reads each
-// bucket's points one after another (the queries are what merging costs: memory, not math).
-struct HashGrid {
-    float radius = 0;
-    std::vector<uint32_t> bucketStart;  // bucket b holds points[bucketStart[b] .. bucketStart[b+1])
-    std::vector<Vec3> points;           // in bucket order
-    std::vector<uint32_t> entries;      // points[e] is the caller's point entries[e]
-};
-
-inline uint32_t gridBucket(const HashGrid& g, Vec3 p, int dx, int dy, int dz) {
-    float cell = 2 * g.radius;
-    auto coordinate = [&](float x, int d) { return uint32_t(int64_t(std::floor(x / cell)) + d); };
-    uint32_t h = coordinate(p.x, dx) * 73856093u ^ coordinate(p.y, dy) * 19349663u ^ coordinate(p.z, dz) * 83492791u;
-    return h % uint32_t(g.bucketStart.size() - 1);
-}
-
-inline void buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius) {
-    g.radius = radius;
-    g.bucketStart.assign(std::max<size_t>(1, points.size()) + 1, 0);
-    g.entries.resize(points.size());
-    g.points.resize(points.size());
-    std::vector<uint32_t> bucket(points.size());
-    for (size_t i = 0; i < points.size(); ++i) ++g.bucketStart[(bucket[i] = gridBucket(g, points[i], 0, 0, 0)) + 1];
-    for (size_t b = 1; b < g.bucketStart.size(); ++b) g.bucketStart[b] += g.bucketStart[b - 1];
-    std::vector<uint32_t> fill(g.bucketStart.begin(), g.bucketStart.end() - 1);
-    for (size_t i = 0; i < points.size(); ++i) {
-        uint32_t e = fill[bucket[i]]++;
-        g.entries[e] = uint32_t(i);
-        g.points[e] = points[i];
-    }
-}
-
-// Calls visit(e) for every point e (in bucket order) within the grid's radius of p, in a fixed
-// order.
-template <class Visit>
-inline void forEachNeighbour(const HashGrid& g, Vec3 p, Visit&& visit) {
-    if (g.points.empty()) return;
-    float cell = 2 * g.radius, r2 = g.radius * g.radius;
-    // The cells of p - r and p + r: the same or the next one on each axis.
-    auto next = [&](float x) { return int(std::floor((x + g.radius) / cell) - std::floor((x - g.radius) / cell)); };
-    Vec3 low = p - Vec3(g.radius);
-    int nx = next(p.x), ny = next(p.y), nz = next(p.z);
-    uint32_t buckets[27], begin[27], end[27];  // 8 unless a division rounds p - r and p + r three cells apart
-    int count = 0;
-    for (int dz = 0; dz <= nz; ++dz)
-        for (int dy = 0; dy <= ny; ++dy)
-            for (int dx = 0; dx <= nx; ++dx) {
-                uint32_t b = gridBucket(g, low, dx, dy, dz);
-                if (std::find(buckets, buckets + count, b) != buckets + count) continue;
-                buckets[count++] = b;
-                __builtin_prefetch(&g.bucketStart[b]);
-            }
-    // Each bucket is two cache misses (its start, its first point): asked for all at once, they
-    // overlap, and the query costs about two misses instead of sixteen.
-    for (int i = 0; i < count; ++i) {
-        begin[i] = g.bucketStart[buckets[i]];
-        end[i] = g.bucketStart[buckets[i] + 1];
-        if (begin[i] < end[i]) __builtin_prefetch(&g.points[begin[i]]);
-    }
-    for (int i = 0; i < count; ++i)
-        for (uint32_t e = begin[i]; e < end[i]; ++e) {
-            Vec3 d = g.points[e] - p;
-            if (dot(d, d) <= r2) visit(e);
-        }
-}
-
-// The pass's light subpaths: pixel p's is paths[p], its vertices stored row by row (the
-// connections need them whole). The mergeable ones also go into the grid, as records.
-struct VcmPass {
-    float radius = 0;
-    double mergeEta = 0;                  // pi r^2 N_light; 0: no merging (vcm is bdpt)
-    std::vector<std::vector<PathVertex>> rowVertices;
-    std::vector<Subpath> paths;
-    // A mergeable light vertex y = light[index] of paths[path] with what its merges need of the
-    // light subpath (qs = light[index - 1]), so that a merge reads this record alone.
-    struct Stored {
-        Vec3 wo, beta;                    // y's
-        double pdfFwd;                    // y's
-        double qsPdfFwd, qsLightTerms;    // qs's pdfFwd and misTerms
-        double qsAreaFactor;              // cos at qs / |qs - y|^2: a solid-angle density at y -> area at qs
-        uint32_t path, index;
-        bool qsDelta;
-    };
-    std::vector<Stored> stored;           // in the grid's bucket order
-    HashGrid grid;
-    size_t bytes() const {  // what the light vertices and the grid take
-        size_t b = 0;
-        for (const std::vector<PathVertex>& row : rowVertices) b += row.capacity() * sizeof(PathVertex);
-        return b + paths.capacity() * sizeof(Subpath) + stored.capacity() * sizeof(Stored) + grid.points.capacity() * sizeof(Vec3) +
-               (grid.bucketStart.capacity() + grid.entries.capacity()) * sizeof(uint32_t);
-    }
-};
-
-// The record of vertex i of the light subpath `light` (cacheMisSums done, with mergeEta), which is
-// the pass's subpath number `path`.
-inline VcmPass::Stored storedVertex(Heuristic heuristic, Subpath light, int i, double mergeEta, uint32_t path) {
-    const PathVertex &y = light[i], &qs = light[i - 1];
-    return {y.wo, y.beta, y.pdfFwd, qs.pdfFwd, misTerms(heuristic, light, i - 1, mergeEta), cosAt(qs, y.wo) / double(y.prevDist2),
-            path, uint32_t(i), qs.delta};
-}
-
-// r_0 when --radius is not given: one pixel's footprint where the central camera ray meets the
-// first non-specular surface (straight through glass and mirrors: a glass ball around the
-// camera is not the scene), d * 2 tan(fov/2) / height. A merge then blurs by about a pixel in
-// the first pass, less later. Measured at 64x64 and equal time (4 s), RMSE for r_0 = half, one,
-// two footprints: sds-ior1 0.030, 0.018, 0.015; cornell 0.0117, 0.0113, 0.0126; a pass cost
-// 1.4x, 1.5x, 2.1x bdpt's on cornell (256x256). One footprint, as SmallVCM's default (0.003
-// scene radii at 512x512) comes to on these scenes.
-inline float defaultMergeRadius(const Scene& scene) {
-    const Camera& cam = scene.camera;
-    Ray ray = cameraRay(cam, 0.5f * cam.width, 0.5f * cam.height);
-    float distance = 0;
-    for (int crossed = 0; crossed < 16; ++crossed) {
-        Hit hit = intersect(scene, ray);
-        if (!hit.found()) break;
-        distance += hit.t;
-        SurfacePoint sp = surfaceAt(scene, ray, hit);
-        if (!isSpecular(scene.materials[scene.shapes[sp.shape].material])) break;
-        ray = spawnRay(sp, ray.d);
-    }
-    return (distance > 0 ? distance : 1) * 2 * cam.tanHalfFov / cam.height;
-}
-
-inline float mergeRadius(const Scene& scene, const RenderOptions& opt, int pass) {  // r(n) = r_0 n^((alpha-1)/2), n = pass + 1
-    float r0 = opt.mergeRadius >= 0 ? opt.mergeRadius : defaultMergeRadius(scene);
-    return r0 * std::pow(float(pass + 1), (opt.alpha - 1) / 2);
-}
-
-// Runs body(row, onCallingThread) for rows 0..rows-1 on `threads` threads (the calling one among
-// them: it alone may draw the progress bar); returns the rays they traced.
-inline RayCount parallelRows(int rows, int threads, const std::function<void(int, bool)>& body) {
-    std::atomic<int> nextRow{0};
-    std::atomic<long long> closest{0}, shadow{0};
-    std::atomic<bool> outOfMemory{false};
-    auto worker = [&](bool onCallingThread) {
-        RayCount before = gRaysTraced;
-        try {
-            for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y, onCallingThread);
-        } catch (const std::bad_alloc&) {  // thrown on, by the calling thread, once all have stopped
-            outOfMemory = true;
-            nextRow = rows;
-        }
-        closest += gRaysTraced.closest - before.closest;
-        shadow += gRaysTraced.shadow - before.shadow;
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, false);
-    worker(true);
-    for (std::thread& t : pool) t.join();
-    if (outOfMemory) throw std::bad_alloc();
-    return {closest.load(), shadow.load()};
-}
-
-inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, VcmPass& vp, RayCount& rays) {
-    const int W = scene.camera.width, H = scene.camera.height;
-    vp.radius = mergeRadius(scene, opt, pass);
-    vp.mergeEta = double(kPi) * vp.radius * vp.radius * double(W) * H;
-    vp.rowVertices.resize(H);  // kept from pass to pass: no allocation once the rows have grown
-    std::vector<std::vector<int>> rowLengths(H);
-    RayCount traced = parallelRows(H, threads, [&](int y, bool) {
-        thread_local std::vector<PathVertex> path;
-        vp.rowVertices[y].clear();
-        for (int x = 0; x < W; ++x) {
-            Rng rng = lightPathRng(opt, y * W + x, pass);
-            lightSubpath(scene, opt, rng, path);
-            cacheMisSums(opt.heuristic, path, vp.mergeEta);
-            vp.rowVertices[y].insert(vp.rowVertices[y].end(), path.begin(), path.end());
-            rowLengths[y].push_back(int(path.size()));
-        }
-    });
-    rays.closest += traced.closest;
-    rays.shadow += traced.shadow;
-    vp.paths.clear();
-    vp.stored.clear();
-    std::vector<Vec3> points;  // of the stored vertices, for the grid (which keeps its own copy)
-    for (int y = 0; y < H; ++y) {
-        const PathVertex* v = vp.rowVertices[y].data();
-        for (int n : rowLengths[y]) {
-            uint32_t path = uint32_t(vp.paths.size());
-            vp.paths.emplace_back(v, n);
-            for (int i = 1; i < n && vp.radius > 0; ++i)
-                if (connectable(scene, v[i])) {
-                    vp.stored.push_back(storedVertex(opt.heuristic, Subpath(v, n), i, vp.mergeEta, path));
-                    points.push_back(v[i].sp.p);
-                }
-            v += n;
-        }
-    }
-    if (vp.radius <= 0) return;
-    buildHashGrid(vp.grid, points, vp.radius);
-    std::vector<VcmPass::Stored> byBucket(vp.stored.size());
-    for (size_t e = 0; e < byBucket.size(); ++e) byBucket[e] = vp.stored[vp.grid.entries[e]];
-    vp.stored.swap(byBucket);
-}
-
-// w of the merge of camera[t-1] with y = light[j] (light: y's light subpath; y its record): the
-// path is light[0..j-1] + camera[t-1..0] as for the connection (j, t), y's density of reaching
-// the merged vertex counted once. pdf and pdfReverse: camera[t-1]'s BSDF densities of sampling
-// y.wo from camera[t-1].wo and back. The light side's walk comes with y's record (walkLight:
-// along the subpath instead, as the max heuristic must, and tests compare).
-// The max heuristic evaluates the merged path on one geometry, the connection (j, t)'s, with the
-// camera vertex x where y was: in the furnace many strategies have exactly equal densities, and
-// y's densities mixed with x's made ties flip from one photon to the next (2.048 instead of 2 at
-// a fixed radius of 0.1); the sums' heuristics, continuous in the densities, do not care (1.9999).
-// That costs one more BSDF evaluation per merge, at light[j-1]. After a delta event at light[j-1]
-// only y lies on the sampled direction, and y's geometry is kept.
-inline float mergeWeight(const Scene& scene, Subpath light, const VcmPass::Stored& y, Subpath camera, int t, Heuristic heuristic,
-                         double mergeEta, float pdf, float pdfReverse, bool walkLight = false) {
-    const int j = int(y.index);
-    const PathVertex& x = camera[t - 1];
-    Junction jn;
-    double self = mergeEta * y.pdfFwd;  // p_merge / p_{j,t}
-    if (heuristic == Heuristic::Max && !y.qsDelta) {
-        Connection c;
-        evalConnection(scene, light[j - 1], x, c);
-        jn = connectionJunction(scene, light, j, camera, t, c);
-        self = mergeEta * jn.ptRev;
-    } else {
-        jn.ptRev = y.pdfFwd;
-        jn.qsRev = pdf * x.continuation * y.qsAreaFactor;
-        jn.ptMinusRev = toArea(pdfReverse * x.continuation, camera[t - 2], x.wo, x.prevDist2);
-        if (walkLight || heuristic == Heuristic::Max) jn.qsMinusRev = j >= 2 ? light[j - 2].pdfRev : 0;
-        else jn.qsPdfFwd = y.qsPdfFwd, jn.lightTerms = y.qsLightTerms;
-    }
-    jn.lightEndDelta = true;
-    if (!(self > 0)) return 0;           // a light vertex sampled with density 0 cannot be merged
-    MisSum m = misWalk(light, j, camera, t, heuristic, mergeEta, jn, self);  // the merge itself among them
-    bool connectionAble = !y.qsDelta;
-    if (heuristic == Heuristic::Max) {
-        m.larger += connectionAble && 1 > self * (1 + 1e-4);
-        m.equal += connectionAble && std::fabs(1 - self) <= self * 1e-4;
-        return m.larger || m.equal == 0 ? 0 : 1.0f / m.equal;
-    }
-    double total = m.sum + (connectionAble ? misPower(heuristic, 1 / self) : 0);
-    return total > 0 ? float(1 / total) : 0;
-}
-
-// Every merge at the camera vertices z_1..z_{t-1}: the vertices of all light subpaths of the
-// pass within r (their own pixel's as well: a merge is not a connection).
-inline Vec3 mergeCameraVertices(const Scene& scene, const RenderOptions& opt, const VcmPass& vp, const std::vector<PathVertex>& camera,
-                                int here, RowOutput& out) {
-    Vec3 L(0);
-    for (int t = 2; t <= int(camera.size()); ++t) {
-        const PathVertex& x = camera[t - 1];
-        if (!connectable(scene, x)) continue;
-        forEachNeighbour(vp.grid, x.sp.p, [&](uint32_t n) {
-            const VcmPass::Stored& y = vp.stored[n];
-            int k = int(y.index) + t - 1;  // path length: index + 1 light vertices, t camera, one shared
-            if (k - 1 > opt.maxDepth) return;
-            float pdf, pdfReverse;
-            Vec3 f = evalBsdf(scene, x.sp, x.wo, y.wo, Transport::Radiance, pdf, pdfReverse);
-            float cosLight = absDot(y.wo, x.sp.ng);  // the light subpath's flux arrived through ng
-            if (isBlack(f) || cosLight == 0) return;
-            Vec3 c = x.beta * f * y.beta / (cosLight * float(vp.mergeEta));
-            float w = mergeWeight(scene, vp.paths[y.path], y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
-            L += c * w;
-            if (opt.strategyMaxLength > 0 && k <= opt.strategyMaxLength) {
-                int image = mergeImageIndex(k, opt.strategyMaxLength);
-                out.strategySplats.push_back({here, c, 2 * image});
-                out.strategySplats.push_back({here, c * w, 2 * image + 1});
-            }
-        });
-    }
-    return L;
-}
-
-inline Vec3 radianceVCM(const Scene& scene, const RenderOptions& opt, const VcmPass& vp, int x, int y, Rng& rng, RowOutput& out) {
-    thread_local std::vector<PathVertex> camera;
-    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
-    cameraSubpath(scene, opt, filmX, filmY, rng, camera);
-    cacheMisSums(opt.heuristic, camera, vp.mergeEta);
-    int here = y * scene.camera.width + x;
-    Vec3 L = connectSubpaths(scene, opt, vp.paths[here], camera, here, vp.mergeEta, out);
-    return vp.mergeEta > 0 ? L + mergeCameraVertices(scene, opt, vp, camera, here, out) : L;
-}
-
-// -- (h) mlt, mmlt: "Metropolis-Sampling [Veach '97] (see later): random variation and mutations
-// of bidirectional paths; very well suited for very complex light paths; unbiased but relatively
-// complex algorithms; uneven convergence". Primary-sample-space MLT (Kelemen, Szirmay-Kalos, Antal
-// and Csonka 2002) over bdpt's own sample. A state u is the list of uniform numbers one bdpt
-// sample draws (section 1: every number passes Rng::uniform), kept in three streams so that a
-// number keeps its meaning when the other subpath changes length: the camera subpath's (the film
-// position first), the light subpath's and (mmlt) the strategy's. The sample's MIS-weighted
-// contributions h_j(u) to pixels j (t = 1 lands anywhere) give the image as an integral over u,
-//     I_j = W H  integral h_j(u) du      (the sample's pixel is one of W H, chosen by u),
-// and Metropolis draws states with density f(u)/b, f = luminance of sum_j h_j(u) (how bright the
-// sample is), b = integral f(u) du, so that
-//     I_j = W H b E_{f/b}[ h_j / f ]:   each of the W H x spp mutations adds b h_j / f / spp.
-// A step proposes v from u with a symmetric T(u->v) = T(v->u) and accepts it with
-//     a(u->v) = min(1, f(v) T(v->u) / (f(u) T(u->v))) = min(1, f(v) / f(u)),
-// which gives detailed balance, f(u) T(u->v) a(u->v) = f(v) T(v->u) a(v->u): states distributed
-// as f/b stay so. Two kinds of steps (Kelemen):
-//   large (probability --large-step): every number afresh, v independent of u: finds new paths;
-//   small: each number moved by a normal of deviation --sigma, wrapped into [0,1): "random
-//   variation and mutations" of a path that carries light, exploring around it.
-// A number a state never drew is drawn afresh when first used (a longer path than before).
-// Expected-value splats (Veach 1997, 11.5): the proposal adds a h(v)/f(v) and the current state
-// (1-a) h(u)/f(u), whichever wins, so a rejected proposal still counts; the current state's
-// share is added once, when it is left.
-// Start-up bias: a chain started anywhere is distributed as f/b only after a while (forever, in
-// a region it cannot leave). A bootstrap of --bootstrap independent samples estimates b (their
-// mean f, zeros included), and each chain starts from one of them chosen in proportion to f,
-// which is distributed as f/b already (--fixed-start, the deliberate mistake: one fixed state).
-// Already, that is, as far as the bootstrap saw every kind of path: a bright family it missed
-// gets no chain until a large step finds it, and its light is short until then. mmlt's
-// bootstrap, one strategy per sample over 33 lengths, needed 10x mlt's: with 6,000 samples per
-// length its image of cornell-glass was 10% dark around the glass ball after 256 mutations per
-// pixel (a region 5.5 standard errors off over 16 seeds); with 60,000 no region was more than
-// 2.1 off (bootstrapSamples).
-// A large step's proposal is an independent uniform state too (Kelemen's estimate of b): each
-// pass pools them into b for the next, so that b's error, which scales the whole image, keeps
-// falling (with the bootstrap's b alone, mlt's error on cornell stopped falling at 2.5% of the
-// mean, its chart's slope -0.11). The price is a bias of order 1/N from the dependence between b
-// and the chains, far below the noise (test `mlt and mmlt agree with the references ...`).
-// --chains chains, each its own random stream: a pass gives each its share of W H mutations,
-// and their splats are added in chain order, so the image does not depend on --threads.
-// mmlt (Hachisuka, Kaplanyan and Dachsbacher 2014; pbrt's MLT): the state also holds a path
-// length k and, by the strategy stream's number, one strategy s of the k+1 that make it; its
-// contribution is (k+1) w_{s,t} C_{s,t} (t = k+1-s): one connection per sample, weighted by bdpt's
-// MIS, so the chain spends its mutations where the strategy that carries the path does. A chain
-// keeps the k it starts with, drawn in proportion to b_k, the integral of f over paths of length k.
-inline float luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
-// One stream of a state: its numbers, replayed in the order the walk asks for them.
-struct PrimaryStream {
-    std::vector<float> values;
-    size_t used = 0;
-    Rng* fresh = nullptr;  // draws the numbers the state has not used yet
-};
-inline float replayUniform(PrimaryStream& stream) {
-    if (stream.used == stream.values.size()) stream.values.push_back(stream.fresh->uniform());
-    return stream.values[stream.used++];
-}
-
-struct MltState {
-    PrimaryStream camera, light, strategy;
-    int length = 0;                    // mmlt: the path length k (segments); mlt: 0, every length
-    std::vector<Splat> contributions;  // h_j(u)
-    float f = 0;
-};
-
-// mmlt's sample: strategy (s, t = k+1-s) alone, its subpaths exactly s and t vertices long.
-inline Vec3 strategySample(const Scene& scene, const RenderOptions& opt, int k, int s, float filmX, float filmY, int here,
-                           Rng& cameraRng, Rng& lightRng, int& pixel) {
-    thread_local std::vector<PathVertex> camera, light;
-    int t = k + 1 - s;
-    cameraSubpath(scene, opt, filmX, filmY, cameraRng, camera, t);
-    light.clear();
-    if (s > 0) lightSubpath(scene, opt, lightRng, light, s);
-    if (int(camera.size()) != t || int(light.size()) != s) return Vec3(0);  // ended early (roulette, escape)
-    cacheMisSums(opt.heuristic, camera);
-    cacheMisSums(opt.heuristic, light);
-    Connection c;
-    pixel = here;
-    Vec3 C = connectStrategy(scene, light, s, camera, t, c, pixel);
-    if (isBlack(C)) return Vec3(0);
-    return C * misWeight(scene, light, s, camera, t, opt.heuristic, c) * float(k + 1);
-}
-
-// h(u) and f(u) of state u; numbers it has not drawn yet come from the three fresh streams.
-inline void evaluateState(const Scene& scene, const RenderOptions& opt, MltState& u, Rng& cameraFresh, Rng& lightFresh,
-                          Rng& strategyFresh) {
-    Rng cameraRng, lightRng, strategyRng;
-    for (auto [rng, stream, fresh] : {std::make_tuple(&cameraRng, &u.camera, &cameraFresh), std::make_tuple(&lightRng, &u.light, &lightFresh),
-                                      std::make_tuple(&strategyRng, &u.strategy, &strategyFresh)}) {
-        rng->replay = stream;
-        stream->used = 0;
-        stream->fresh = fresh;
-    }
-    const int W = scene.camera.width, H = scene.camera.height;
-    float fx = cameraRng.uniform() * W, fy = cameraRng.uniform() * H;
-    int x = std::min(int(fx), W - 1), y = std::min(int(fy), H - 1), here = y * W + x;
-    float filmX = filmCoordinate(x, fx - x), filmY = filmCoordinate(y, fy - y);
-    u.contributions.clear();
-    if (opt.method == Method::MLT) {
-        thread_local RowOutput out;
-        out.splats.clear();
-        Vec3 L = bdptSample(scene, opt, filmX, filmY, here, cameraRng, lightRng, out);
-        u.contributions.swap(out.splats);
-        u.contributions.push_back({here, L});
-    } else {
-        int s = std::min(int(strategyRng.uniform() * float(u.length + 1)), u.length), pixel = -1;
-        Vec3 C = strategySample(scene, opt, u.length, s, filmX, filmY, here, cameraRng, lightRng, pixel);
-        if (pixel >= 0) u.contributions.push_back({pixel, C});
-    }
-    u.f = 0;
-    for (Splat& h : u.contributions) {
-        if (!isFinite(h.value)) h.value = Vec3(0);  // dropped, as every method drops them
-        u.f += luminance(h.value);
-    }
-}
-
-// f of independent uniform states: the bootstrap's, and every large step's proposal.
-struct FSum {
-    double sum = 0, sumSquares = 0, count = 0;
-    void add(double f) { sum += f, sumSquares += f * f, count += 1; }
-    void add(const FSum& o) { sum += o.sum, sumSquares += o.sumSquares, count += o.count; }
-};
-
-struct MltChain {
-    Rng rng;                   // its steps, acceptances and fresh numbers
-    MltState current, proposal;
-    double currentWeight = 0;  // the current state's expected-value splats not yet added
-    long long accepted = 0, proposed = 0;
-    FSum largeSteps;           // this pass's large-step proposals (for b)
-};
-
-inline float mltAcceptance(float fCurrent, float fProposal) { return fProposal > 0 ? std::min(1.0f, fProposal / fCurrent) : 0.0f; }
-
-// A small step of one number: symmetric in v and the result, wrapped into [0,1), never 1.
-inline float smallStep(float v, float step) {
-    float x = v + step;
-    x -= std::floor(x);
-    return x < 1 ? x : 0;
-}
-// Box-Muller: two independent standard normals from two uniforms (a small step needs one per
-// number; drawing them in pairs halves the cost, a fifth of a mutation's time beside bdpt's).
-inline void standardNormals(Rng& rng, float& a, float& b) {
-    float r = std::sqrt(-2 * std::log(1 - rng.uniform())), phi = 2 * kPi * rng.uniform();
-    a = r * std::cos(phi);
-    b = r * std::sin(phi);
-}
-inline float standardNormal(Rng& rng) {
-    float a, b;
-    standardNormals(rng, a, b);
-    return a;
-}
-
-inline bool proposeStep(const RenderOptions& opt, MltChain& chain) {
-    MltState &v = chain.proposal, &u = chain.current;
-    v.length = u.length;
-    v.camera.values = u.camera.values;
-    v.light.values = u.light.values;
-    v.strategy.values = u.strategy.values;
-    bool large = chain.rng.uniform() < opt.largeStep;
-    if (large) {
-        for (PrimaryStream* stream : {&v.camera, &v.light, &v.strategy}) stream->values.clear();  // afresh, when first used
-        return true;
-    }
-    float normal[2];
-    int left = 0;
-    for (PrimaryStream* stream : {&v.camera, &v.light, &v.strategy})
-        for (float& x : stream->values) {
-            if (left == 0) standardNormals(chain.rng, normal[0], normal[1]), left = 2;
-            x = smallStep(x, opt.sigma * normal[--left]);
-        }
-    return false;
-}
-
-// One Metropolis step of a chain whose current state has f > 0: propose, evaluate, splat the
-// expected values through splat(state, weight), accept with probability a. `accept` is
-// mltAcceptance (a test passes others, to see them fail).
-template <class Evaluate, class SplatState>
-inline void metropolisStep(const RenderOptions& opt, MltChain& chain, const Evaluate& evaluate, const SplatState& splat,
-                           float (*accept)(float, float) = mltAcceptance) {
-    bool large = proposeStep(opt, chain);
-    evaluate(chain.proposal);
-    if (large) chain.largeSteps.add(chain.proposal.f);
-    float a = accept(chain.current.f, chain.proposal.f);
-    if (a > 0) splat(chain.proposal, double(a) / chain.proposal.f);
-    chain.currentWeight += double(1 - a) / chain.current.f;
-    ++chain.proposed;
-    if (chain.rng.uniform() < a) {
-        splat(chain.current, chain.currentWeight);
-        chain.currentWeight = 0;
-        std::swap(chain.current, chain.proposal);
-        ++chain.accepted;
-    }
-}
-
-// What mlt keeps from pass to pass.
-struct MltPass {
-    double b = 0, bStandardError = 0;  // the estimate of b = integral f(u) du this pass uses
-    std::vector<FSum> fByLength;       // f of independent states, per path length (mlt: one)
-    std::vector<MltChain> chains;
-    std::vector<std::vector<Splat>> chainSplats;  // this pass's, per chain
-    std::vector<Vec3> image;                      // this pass's: b sum h/f over W H mutations
-    long long total(long long MltChain::*count) const {  // accepted or proposed, over the chains
-        long long n = 0;
-        for (const MltChain& c : chains) n += c.*count;
-        return n;
-    }
-};
-
-// The bootstrap's size: mmlt's samples are single strategies, each noisier than bdpt's whole
-// sample and a few times cheaper, and it spreads them over maxdepth+1 path lengths: ten times
-// mlt's (fewer left the start-up bias below visible on cornell-glass at 256 mutations per pixel).
-inline int bootstrapSamples(const RenderOptions& opt) {
-    return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::MMLT ? 1000000 : 100000;
-}
-
-inline Rng bootstrapRng(const RenderOptions& opt, int sample, int stream) {
-    return makeRng(opt.seed ^ 0x2545f4914f6cdd1dULL, uint64_t(sample), uint64_t(stream));
-}
-
-// Bootstrap sample i (mmlt: of length 1 + i mod (maxdepth+1)) into u, from its own streams.
-inline void bootstrapSample(const Scene& scene, const RenderOptions& opt, int i, MltState& u) {
-    Rng camera = bootstrapRng(opt, i, 0), light = bootstrapRng(opt, i, 1), strategy = bootstrapRng(opt, i, 2);
-    u.camera.values.clear();
-    u.light.values.clear();
-    u.strategy.values.clear();
-    u.length = opt.method == Method::MMLT ? 1 + i % (opt.maxDepth + 1) : 0;
-    evaluateState(scene, opt, u, camera, light, strategy);
-}
-
-// b = sum over lengths k of the mean f of length k's independent samples (mlt: one length),
-// and its standard error.
-inline void estimateB(MltPass& mp) {
-    double b = 0, variance = 0;
-    for (const FSum& s : mp.fByLength) {
-        if (s.count == 0) continue;
-        double mean = s.sum / s.count;
-        b += mean;
-        variance += std::max(0.0, s.sumSquares / s.count - mean * mean) / std::max(1.0, s.count - 1);
-    }
-    mp.b = b;
-    mp.bStandardError = std::sqrt(variance);
-}
-
-// b from --bootstrap samples (mmlt: spread evenly over the lengths), and each chain's start: a
-// bootstrap sample drawn in proportion to its f.
-inline void startChains(const Scene& scene, const RenderOptions& opt, int threads, MltPass& mp, RayCount& rays) {
-    const int n = bootstrapSamples(opt), lengths = opt.method == Method::MMLT ? opt.maxDepth + 1 : 1;
-    std::vector<double> f(n);
-    RayCount traced = parallelRows(n, threads, [&](int i, bool) {
-        thread_local MltState u;
-        bootstrapSample(scene, opt, i, u);
-        f[i] = u.f;
-    });
-    rays.closest += traced.closest;
-    rays.shadow += traced.shadow;
-    mp.fByLength.assign(lengths, FSum());
-    for (int i = 0; i < n; ++i) mp.fByLength[i % lengths].add(f[i]);
-    estimateB(mp);
-    std::vector<double> count(lengths);
-    for (int k = 0; k < lengths; ++k) count[k] = mp.fByLength[k].count;
-    mp.chains.assign(std::max(1, opt.chains), MltChain());
-    mp.chainSplats.assign(mp.chains.size(), {});
-    if (!(mp.b > 0)) return;  // no sample found light: the image stays black
-    // Each length's samples weigh by 1/count of that length, so that the choice is f / (n_k b).
-    std::vector<double> cdf(n);
-    double total = 0;
-    for (int i = 0; i < n; ++i) cdf[i] = total += f[i] / count[i % lengths];
-    int firstLit = int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
-    for (size_t c = 0; c < mp.chains.size(); ++c) {
-        MltChain& chain = mp.chains[c];
-        chain.rng = makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(c), 0);
-        double pick = double(chain.rng.uniform()) * total;
-        int i = opt.fixedStart ? firstLit : int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin());
-        i = std::min(i, n - 1);
-        while (f[i] == 0) --i;  // pick fell on the edge of a zero: the sample before holds it
-        bootstrapSample(scene, opt, i, chain.current);
-    }
-}
-
-// One pass: W H mutations shared among the chains (one per pixel on average), their splats
-// added in chain order into mp.image.
-inline void traceMltPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, MltPass& mp, RayCount& rays) {
-    const long long N = (long long)scene.camera.width * scene.camera.height;
-    if (pass == 0) startChains(scene, opt, threads, mp, rays);
-    mp.image.assign(size_t(N), Vec3(0));
-    if (!(mp.b > 0)) return;
-    const long long C = (long long)mp.chains.size();
-    RayCount traced = parallelRows(int(C), threads, [&](int c, bool) {
-        MltChain& chain = mp.chains[c];
-        std::vector<Splat>& out = mp.chainSplats[c];
-        out.clear();
-        auto splat = [&](const MltState& u, double weight) {
-            for (const Splat& h : u.contributions)
-                if (!isBlack(h.value)) out.push_back({h.pixel, h.value * float(weight * mp.b)});
-        };
-        auto evaluate = [&](MltState& u) { evaluateState(scene, opt, u, chain.rng, chain.rng, chain.rng); };
-        for (long long i = 0, n = N / C + (c < N % C); i < n; ++i) metropolisStep(opt, chain, evaluate, splat);
-        splat(chain.current, chain.currentWeight);
-        chain.currentWeight = 0;
-    });
-    rays.closest += traced.closest;
-    rays.shadow += traced.shadow;
-    for (const std::vector<Splat>& splats : mp.chainSplats)
-        for (const Splat& s : splats) mp.image[s.pixel] += s.value;
-    for (MltChain& chain : mp.chains) {  // the next pass's b, with this pass's large steps
-        mp.fByLength[opt.method == Method::MMLT ? chain.current.length - 1 : 0].add(chain.largeSteps);
-        chain.largeSteps = FSum();
-    }
-    estimateB(mp);
-}
-
-// What every method shares for one pass, computed before the pixels (ir's VPLs, vcm's light
-// subpaths and grid, mlt's chains).
-struct PassData {
-    int pass = 0;
-    std::vector<Vpl> vpls;
-    VcmPass vcm;
-    MltPass mlt;
-    RayCount rays;  // traced for them
-};
-
-inline void preparePass(const Scene& scene, const RenderOptions& opt, int pass, int threads, PassData& data) {
-    data.pass = pass;
-    data.rays = RayCount();
-    if (opt.method == Method::IR) data.rays = parallelRows(1, 1, [&](int, bool) { data.vpls = traceVpls(scene, opt, pass); });
-    if (opt.method == Method::VCM) traceVcmLightPass(scene, opt, pass, threads, data.vcm, data.rays);
-    if (isMetropolis(opt.method)) traceMltPass(scene, opt, pass, threads, data.mlt, data.rays);
-}
-
-// One sample of pixel (x, y): what a camera path brings back; light paths add splats instead.
-inline Vec3 samplePixel(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng,
-                        RowOutput& out) {
-    switch (opt.method) {
-        case Method::LT: traceLightPath(scene, opt, rng, out.splats); return Vec3(0);  // this pixel's stream: one light path
-        case Method::BDPT: return radianceBDPT(scene, opt, x, y, pass.pass, rng, out);
-        case Method::VCM: return radianceVCM(scene, opt, pass.vcm, x, y, rng, out);
-        case Method::MLT: case Method::MMLT: return pass.mlt.image[size_t(y) * scene.camera.width + x];  // the chains' pass
-        default: break;
-    }
-    float filmX = filmCoordinate(x, rng.uniform()), filmY = filmCoordinate(y, rng.uniform());  // in this order
-    Ray ray = cameraRay(scene.camera, filmX, filmY);
-    switch (opt.method) {
-        case Method::PT: return radiancePT(scene, opt, ray, rng);
-        case Method::NEE: return radianceNEE(scene, opt, ray, rng);
-        default: return radianceIR(scene, opt, ray, rng, pass.vpls, out);
-    }
-
-}
-
-// == 9. Film, rendering loop, image files =======================================================
-// A pass gives every pixel one camera sample (and, for light-path methods, every pixel's random
-// stream one light path, splatted wherever it lands). Pixels write only themselves; splats are
-// kept per image row and added in row order after the pass, so the sum, and the image, is the
-// same bit for bit whatever the number of threads. The image is (sum of passes) / passes.
-struct Image {
-    int width = 0, height = 0;
-    std::vector<Vec3> pixels;
-    Image() = default;
-    Image(int w, int h) : width(w), height(h), pixels(size_t(w) * h) {}
-    Vec3& at(int x, int y) { return pixels[size_t(y) * width + x]; }
-    const Vec3& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
-};
-
-inline double imageMean(const Image& img) {
-    double s = 0;
-    for (const Vec3& p : img.pixels) s += double(p.x) + p.y + p.z;
-    return s / (3.0 * std::max<size_t>(1, img.pixels.size()));
-}
-
-struct RenderResult {
-    Image image;                    // mean over passes
-    Image variance;                 // per pixel and channel: variance of that mean (from the passes)
-    int passes = 0;
-    long long nonFinite = 0;        // NaN/inf samples and splats dropped
-    double seconds = 0;
-    std::vector<double> passMeans;  // each pass's image mean: independent samples of the mean
-    double clampRemoved = 0;        // ir --clamp: fraction of the gathered energy the clamp removed
-    std::vector<Image> strategyImages;  // bdpt --strategies: [2 strategyIndex(s,t) + weighted]
-    bool interrupted = false;
-    RayCount rays;                  // all threads, all passes (ir's VPL paths included)
-    size_t lightVertexBytes = 0;    // vcm: the most one pass's light subpaths and grid took
-    long long mergeableVertices = 0;  // vcm: in the grid, summed over passes
-    double mltB = 0, mltBError = 0;   // mlt, mmlt: the final b (bootstrap and large steps) and its standard error
-    long long mltAccepted = 0, mltProposed = 0;
-};
-
-struct ProgressBar {
-    bool enabled = false;
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last;
-    void show(double fraction, int passes, double etaSeconds) {
-        if (!enabled) return;
-        auto now = std::chrono::steady_clock::now();
-        if (fraction < 1 && now - last < std::chrono::milliseconds(200)) return;
-        last = now;
-        int width = 30, filled = int(std::min(1.0, fraction) * width);
-        std::fprintf(stderr, "\r[%s%s] %3d%%  pass %d  ETA %5.1f s ", std::string(filled, '#').c_str(),
-                     std::string(width - filled, '.').c_str(), int(100 * std::min(1.0, fraction)), passes,
-                     std::max(0.0, etaSeconds));
-        if (fraction >= 1) std::fprintf(stderr, "\n");
-    }
-};
-
-inline double secondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Ctrl-C: the first interrupt lets the pass in flight finish, then the render stops and the
-// completed passes are written as usual (status 130). A second one removes the file being
-// written, if any, and exits at once (status 3, "abandoned"); but a second signal within a second
-// of the first is the same key press: `timeout -s INT` and some terminals signal the process and
-// then its whole group. Only async-signal-safe calls in the handler.
-constexpr int kExitInterrupted = 130, kExitAbandoned = 3;
-inline std::atomic<int> gInterrupts{0};
-inline std::atomic<long long> gFirstInterruptNs{0};
-inline char gFileBeingWritten[4096] = {0};
-inline void writeToStderr(const char* text) {
-    ssize_t written = write(2, text, std::strlen(text));
-    (void)written;  // nothing more to do if stderr is gone
-}
-extern "C" inline void onInterrupt(int) {
-    timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    long long now = ts.tv_sec * 1000000000LL + ts.tv_nsec;
-    if (gInterrupts.fetch_add(1) == 0) {
-        gFirstInterruptNs = now;
-        writeToStderr("\nbdpt: interrupted: finishing the pass in flight, then writing the image (Ctrl-C again to abandon it)\n");
-        return;
-    }
-    if (now - gFirstInterruptNs.load() < 1000000000LL) return;
-    if (gFileBeingWritten[0]) unlink(gFileBeingWritten);
-    writeToStderr("bdpt: abandoned: no image written\n");
-    _exit(kExitAbandoned);
-}
-
-inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
-    const Camera& cam = scene.camera;
-    const int W = cam.width, H = cam.height;
-    int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    std::vector<double> sum(size_t(W) * H * 3, 0.0), sumSq(sum.size(), 0.0);
-    std::vector<Vec3> pass(size_t(W) * H);
-    std::vector<RowOutput> rows(H);
-    double energyUnclamped = 0, energyClamped = 0;
-    std::vector<std::vector<double>> strategySum(2 * strategyImageCount(opt), std::vector<double>(3 * size_t(W) * H, 0.0));
-    RenderResult result;
-    PassData passData;  // kept from pass to pass: vcm reuses its buffers
-    ProgressBar bar;
-    bar.enabled = !opt.quiet && isatty(2);
-    auto t0 = std::chrono::steady_clock::now();
-    auto fraction = [&](double passesDone) {
-        return opt.seconds > 0 ? secondsSince(t0) / opt.seconds : passesDone / std::max(1, opt.spp);
-    };
-    for (int p = 0; opt.seconds > 0 ? (p == 0 || secondsSince(t0) < opt.seconds) : p < opt.spp; ++p) {
-        if (p > 0 && gInterrupts.load() > 0) {
-            result.interrupted = true;
-            break;
-        }
-        preparePass(scene, opt, p, threads, passData);
-        result.lightVertexBytes = std::max(result.lightVertexBytes, passData.vcm.bytes());
-        result.mergeableVertices += (long long)passData.vcm.stored.size();
-        RayCount traced = parallelRows(H, threads, [&](int y, bool onCallingThread) {
-            RowOutput& row = rows[y];
-            row.splats.clear();
-            row.strategySplats.clear();
-            row.nonFinite = 0;
-            row.energyUnclamped = row.energyClamped = 0;
-            for (int x = 0; x < W; ++x) {
-                Rng rng = makeRng(opt.seed, uint64_t(y) * W + x, uint64_t(p));
-                Vec3 v = samplePixel(scene, opt, passData, x, y, rng, row);
-                if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
-                pass[size_t(y) * W + x] = v;
-            }
-            if (onCallingThread) {
-                double f = fraction(p + double(y + 1) / H);
-                bar.show(std::min(0.999, f), p, secondsSince(t0) * (1 / std::max(1e-9, f) - 1));
-            }
-        });
-        result.rays.closest += traced.closest + passData.rays.closest;
-        result.rays.shadow += traced.shadow + passData.rays.shadow;
-        double passSum = 0;
-        for (int y = 0; y < H; ++y) {
-            result.nonFinite += rows[y].nonFinite;
-            energyUnclamped += rows[y].energyUnclamped;
-            energyClamped += rows[y].energyClamped;
-            for (const Splat& s : rows[y].splats) {
-                if (isFinite(s.value)) pass[s.pixel] += s.value;
-                else ++result.nonFinite;
-            }
-            for (const StrategySplat& s : rows[y].strategySplats)
-                if (isFinite(s.value))
-                    for (int c = 0; c < 3; ++c) strategySum[s.image][3 * size_t(s.pixel) + c] += s.value[c];
-        }
-        for (size_t i = 0; i < pass.size(); ++i) {
-            for (int c = 0; c < 3; ++c) {
-                sum[3 * i + c] += pass[i][c];
-                sumSq[3 * i + c] += double(pass[i][c]) * pass[i][c];
-            }
-            passSum += double(pass[i].x) + pass[i].y + pass[i].z;
-        }
-        result.passMeans.push_back(passSum / (3.0 * pass.size()));
-        if (opt.onPass) opt.onPass(p, pass, result.nonFinite);
-        result.passes = p + 1;
-    }
-    result.seconds = secondsSince(t0);
-    result.mltB = passData.mlt.b;
-    result.mltBError = passData.mlt.bStandardError;
-    result.mltAccepted = passData.mlt.total(&MltChain::accepted);
-    result.mltProposed = passData.mlt.total(&MltChain::proposed);
-    result.clampRemoved = energyUnclamped > 0 ? 1 - energyClamped / energyUnclamped : 0;
-    bar.show(1, result.passes, 0);
-    result.image = result.variance = Image(W, H);
-    const double n = result.passes;
-    for (const std::vector<double>& sum : strategySum) {
-        Image img(W, H);
-        for (size_t i = 0; i < img.pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c) img.pixels[i][c] = float(sum[3 * i + c] / n);
-        result.strategyImages.push_back(img);
-    }
-    for (size_t i = 0; i < result.image.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            double mean = sum[3 * i + c] / n;
-            result.image.pixels[i][c] = float(mean);
-            result.variance.pixels[i][c] =
-                n > 1 ? float(std::max(0.0, sumSq[3 * i + c] / n - mean * mean) / (n - 1)) : 0.0f;
-        }
-    return result;
-}
-
-// Files appear whole or not at all: written under a temporary name, then renamed.
-inline bool commitFile(const std::string& tmp, const std::string& path, bool ok) {
-    bool done = ok && std::rename(tmp.c_str(), path.c_str()) == 0;
-    if (!done) std::remove(tmp.c_str());
-    gFileBeingWritten[0] = 0;
-    return done;
-}
-inline std::string tempName(const std::string& path) {  // and remember it for a second Ctrl-C
-    std::string tmp = path + ".tmp" + std::to_string(getpid());
-    std::snprintf(gFileBeingWritten, sizeof gFileBeingWritten, "%s", tmp.c_str());
-    return tmp;
-}
-
-// PFM: linear floats, little-endian (scale -1), rows from the bottom up.
-inline bool writePFM(const Image& img, const std::string& path) {
-    std::string tmp = tempName(path);
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) return false;
-    bool ok = std::fprintf(f, "PF\n%d %d\n-1.0\n", img.width, img.height) > 0;
-    for (int y = img.height - 1; y >= 0 && ok; --y)
-        ok = std::fwrite(&img.at(0, y), sizeof(Vec3), img.width, f) == size_t(img.width);
-    ok = (std::fclose(f) == 0) && ok;
-    return commitFile(tmp, path, ok);
-}
-
-inline bool readPFM(const std::string& path, Image& img) {
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return false;
-    char magic[3] = {0};
-    int w = 0, h = 0;
-    float scale = 0;
-    bool ok = std::fscanf(f, "%2s %d %d %f", magic, &w, &h, &scale) == 4 && std::string(magic) == "PF" && w > 0 &&
-              h > 0 && w <= 16384 && h <= 16384 && scale < 0 && std::fgetc(f) != EOF;
-    if (ok) {
-        img = Image(w, h);
-        for (int y = h - 1; y >= 0 && ok; --y) ok = std::fread(&img.at(0, y), sizeof(Vec3), w, f) == size_t(w);
-    }
-    std::fclose(f);
-    return ok;
-}
-
-// Error against a reference image (speed against accuracy). RMSE over pixels and channels;
-// relMSE = mean (x - ref)^2 / (ref^2 + 0.01), as rendering papers report it; the relative bias of
-// the image mean; and a firefly measure: the 99.9th percentile of the per-pixel absolute error
-// over its median (large where a few pixels carry huge errors).
-struct ErrorMetrics {
-    double rmse = 0, relMse = 0, mean = 0, bias = 0, firefly = 0;
-    double rmseWithoutLamp = 0;  // rmse over the pixels that are not nearLamp
-};
-
-// A lamp seen directly: a pixel within one pixel of a reference value above 5. Its edge pixels
-// are part lamp (Le = 17 in the Cornell boxes) and part ceiling, and a camera sample's jitter lands
-// on one or the other: that noise is the pixel filter's, the same for every camera-path method,
-// and on cornell it was 90% of their MSE, hiding the transport's error (light tracing splats many
-// lamp points into each such pixel per pass and does not show it). make efficiency and the
-// charts' curves leave these pixels out.
-inline bool nearLamp(const Image& ref, int x, int y) {
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            int u = x + dx, v = y + dy;
-            if (u >= 0 && v >= 0 && u < ref.width && v < ref.height && maxComponent(ref.at(u, v)) > 5) return true;
-        }
-    return false;
-}
-
-inline ErrorMetrics compareToReference(const Image& img, const Image& ref) {
-    ErrorMetrics m;
-    std::vector<double> pixelError(img.pixels.size());
-    double refSum = 0, sum = 0, lampless = 0;
-    long lamplessValues = 0;
-    for (size_t i = 0; i < img.pixels.size(); ++i) {
-        bool lamp = ref.width > 0 && nearLamp(ref, int(i % ref.width), int(i / ref.width));
-        for (int c = 0; c < 3; ++c) {
-            double x = img.pixels[i][c], r = ref.pixels[i][c], e = x - r;
-            m.rmse += e * e;
-            if (!lamp) lampless += e * e, ++lamplessValues;
-            m.relMse += e * e / (r * r + 0.01);
-            sum += x;
-            refSum += r;
-        }
-        pixelError[i] = std::fabs(double(average(img.pixels[i])) - average(ref.pixels[i]));
-    }
-    double n = 3.0 * img.pixels.size();
-    m.rmse = std::sqrt(m.rmse / n);
-    m.rmseWithoutLamp = std::sqrt(lampless / std::max(1L, lamplessValues));
-    m.relMse /= n;
-    m.mean = sum / n;
-    m.bias = refSum > 0 ? (sum - refSum) / refSum : 0;
-    auto quantile = [&](double q) {
-        size_t k = std::min(pixelError.size() - 1, size_t(q * (pixelError.size() - 1) + 0.5));
-        std::nth_element(pixelError.begin(), pixelError.begin() + k, pixelError.end());
-        return pixelError[k];
-    };
-    double median = quantile(0.5), p999 = quantile(0.999);
-    m.firefly = p999 / std::max(median, 1e-12);
-    return m;
-}
-
-inline unsigned char toSRGB8(float linear) {
-    float v = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
-    return (unsigned char)(std::min(1.0f, std::max(0.0f, v)) * 255.0f + 0.5f);
-}
-
-inline std::vector<unsigned char> toSRGBBytes(const Image& img, float exposure) {
-    std::vector<unsigned char> bytes(img.pixels.size() * 3);
-    float scale = std::exp2(exposure);
-    for (size_t i = 0; i < img.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) bytes[3 * i + c] = toSRGB8(img.pixels[i][c] * scale);
-    return bytes;
-}
-
-inline bool writePNGBytes(const std::vector<unsigned char>& bytes, int width, int height, const std::string& path) {
-    std::string tmp = tempName(path);
-    bool ok = stbi_write_png(tmp.c_str(), width, height, 3, bytes.data(), width * 3) != 0;
-    return commitFile(tmp, path, ok);
-}
-
-inline bool writePNG(const Image& img, const std::string& path, float exposure) {
-    return writePNGBytes(toSRGBBytes(img, exposure), img.width, img.height, path);
-}
-
-// Where two methods differ: the ratio A/B of the two images' means over blocks of block x block
-// pixels (the blocks average the noise away), as a false-colour image that is white where A = B,
-// redder where A is brighter and bluer where darker, saturating at one stop; dark grey where
-// both are black. Each block's pixels hold its ratio (the PFM).
-inline Image blockRatio(const Image& a, const Image& b, int block) {
-    Image r(a.width, a.height);
-    for (int by = 0; by < a.height; by += block)
-        for (int bx = 0; bx < a.width; bx += block) {
-            double sa = 0, sb = 0;
-            for (int y = by; y < std::min(a.height, by + block); ++y)
-                for (int x = bx; x < std::min(a.width, bx + block); ++x) {
-                    sa += double(a.at(x, y).x) + a.at(x, y).y + a.at(x, y).z;
-                    sb += double(b.at(x, y).x) + b.at(x, y).y + b.at(x, y).z;
-                }
-            float ratio = sb > 0 ? float(sa / sb) : sa > 0 ? kInf : std::numeric_limits<float>::quiet_NaN();
-            for (int y = by; y < std::min(a.height, by + block); ++y)
-                for (int x = bx; x < std::min(a.width, bx + block); ++x) r.at(x, y) = Vec3(ratio);
-        }
-    return r;
-}
-
-inline Image ratioColours(const Image& ratio) {
-    Image c(ratio.width, ratio.height);
-    for (size_t i = 0; i < ratio.pixels.size(); ++i) {
-        float q = ratio.pixels[i].x;
-        if (std::isnan(q)) { c.pixels[i] = Vec3(0.03f); continue; }
-        float t = std::max(-1.0f, std::min(1.0f, q > 0 ? std::log2(q) : -1.0f));
-        c.pixels[i] = t >= 0 ? Vec3(1, 1 - t, 1 - t) : Vec3(1 + t, 1 + t, 1);
-    }
-    return c;
-}
-
-// Labels for the strategy pyramid: a 5-pixel-high font of the few characters it needs, 3 pixels
-// wide but for 'm', which needs 5 to read as m and not n.
-inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, int x0, int y0, const std::string& text, int scale) {
-    static const std::map<char, const char*> glyphs = {
-        {'0', "111101101101111"}, {'1', "010110010010111"}, {'2', "111001111100111"}, {'3', "111001111001111"},
-        {'4', "101101111001001"}, {'5', "111100111001111"}, {'6', "111100111101111"}, {'7', "111001001001001"},
-        {'8', "111101111101111"}, {'9', "111101111001111"}, {'s', "011100010001110"}, {'t', "010111010010011"},
-        {'=', "000111000111000"}, {' ', "000000000000000"}, {'k', "100101110101101"},
-        {'m', "0000011010101011010110101"}, {'+', "000010111010000"}};
-    int x = x0;
-    for (char ch : text) {
-        auto g = glyphs.find(ch);
-        if (g == glyphs.end()) continue;
-        const int glyphWidth = int(std::strlen(g->second)) / 5;
-        for (int gy = 0; gy < 5; ++gy)
-            for (int gx = 0; gx < glyphWidth; ++gx) {
-                if (g->second[gy * glyphWidth + gx] != '1') continue;
-                for (int dy = 0; dy < scale; ++dy)
-                    for (int dx = 0; dx < scale; ++dx) {
-                        int px = x + gx * scale + dx, py = y0 + gy * scale + dy;
-                        if (px < 0 || py < 0 || px >= width || py >= height) continue;
-                        for (int c = 0; c < 3; ++c) rgb[3 * (size_t(py) * width + px) + c] = 255;
-                    }
-            }
-        x += (glyphWidth + 1) * scale;
-    }
-}
-
-inline bool hasExtension(const std::string& path, const std::string& ext) {  // case-insensitive
-    if (path.size() <= ext.size() || path[path.size() - ext.size() - 1] == '/') return false;
-    for (size_t i = 0; i < ext.size(); ++i)
-        if (std::tolower((unsigned char)path[path.size() - ext.size() + i]) != ext[i]) return false;
-    return true;
-}
-
-inline std::string replaceExtension(const std::string& path, const std::string& ext) {
-    size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
-    bool hasExt = dot != std::string::npos && (slash == std::string::npos || dot > slash);
-    return (hasExt ? path.substr(0, dot) : path) + ext;
-}
-
-// The pyramid's rows differ by orders of magnitude (each bounce keeps about the albedo), so each
-// row k is brightened by whole stops until its light, the sum of its weighted tiles, comes within
-// half a stop of the brightest row's; the tile's label prints them ("s1 t3 +2").
-inline bool hasMergeImages(const RenderResult& r, int maxLength) {  // vcm: a column "m k" of merges
-    return int(r.strategyImages.size()) > maxLength * (maxLength + 3);
-}
-
-inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
-    const bool merges = hasMergeImages(r, maxLength);
-    std::vector<double> rowMean(maxLength + 1, 0);
-    for (int k = 1; k <= maxLength; ++k) {
-        for (int s = 0; s <= k; ++s) rowMean[k] += imageMean(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1]);
-        if (merges && k > 1) rowMean[k] += imageMean(r.strategyImages[2 * mergeImageIndex(k, maxLength) + 1]);
-    }
-    double brightest = *std::max_element(rowMean.begin(), rowMean.end());
-    std::vector<int> stops(maxLength + 1, 0);
-    for (int k = 1; k <= maxLength; ++k)
-        if (rowMean[k] > 0) stops[k] = std::min(12, int(std::lround(std::log2(brightest / rowMean[k]))));
-    return stops;
-}
-
-// The slides' "Contributions of different paths" as a pyramid: row k = path length (segments),
-// column s = vertices from the light (t = k+1-s from the camera), one image per strategy p_{k,s}.
-// Each tile's label sits in a strip above it, never on the image: the lamp, row 1's whole
-// content, lies at the top of the frame.
-struct PyramidLayout {
-    bool merges;  // vcm: a column "m k" of merges
-    int W, H, gap = 4, scale, strip, rowH, canvasW, canvasH;
-    PyramidLayout(int width, int height, int maxLength, bool withMerges)
-        : merges(withMerges), W(width), H(height), scale(std::max(1, std::min(width / 40, height / 32))), strip(7 * scale),
-          rowH(strip + H + gap), canvasW((maxLength + 1 + merges) * (W + gap) + gap), canvasH(maxLength * rowH + gap) {}
-    int tileX(int k, int s, int maxLength) const { return gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap); }
-    int tileY(int k) const { return gap + (k - 1) * rowH + strip; }
-};
-
-// Every tile of the pyramid, row by row: fn(k, s, image index); s = k + 1 is the merges of
-// length k (vcm), named "m k".
-template <class Fn>
-void forEachPyramidTile(int maxLength, bool merges, Fn fn) {
-    for (int k = 1; k <= maxLength; ++k)
-        for (int s = 0; s <= k + merges; ++s) {
-            bool merge = s == k + 1;
-            if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
-            fn(k, s, merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, k + 1 - s));
-        }
-}
-
-inline std::string tileName(int k, int s) {  // "s1 t3", or "m k3" for the merges
-    return s == k + 1 ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(k + 1 - s);
-}
-
-// The montage of one kind (weighted or not), as sRGB bytes of layout.canvasW x layout.canvasH.
-inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLength, float exposure, bool weighted,
-                                                const PyramidLayout& layout, const std::vector<int>& rowStops) {
-    std::vector<unsigned char> canvas(size_t(layout.canvasW) * layout.canvasH * 3, 40);
-    forEachPyramidTile(maxLength, layout.merges, [&](int k, int s, int index) {
-        std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * index + weighted], exposure + rowStops[k]);
-        int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
-        for (int y = 0; y < layout.H; ++y)
-            std::copy(tile.begin() + 3 * size_t(y) * layout.W, tile.begin() + 3 * size_t(y + 1) * layout.W,
-                      canvas.begin() + 3 * (size_t(y0 + y) * layout.canvasW + x0));
-        std::string label = tileName(k, s) + (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
-        drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - 6 * layout.scale, label, layout.scale);
-    });
-    return canvas;
-}
-
-inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
-    if (r.strategyImages.empty()) return true;
-    const PyramidLayout layout(r.image.width, r.image.height, maxLength, hasMergeImages(r, maxLength));
-    const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
-    bool ok = true;
-    for (int weighted = 0; weighted < 2; ++weighted) {
-        forEachPyramidTile(maxLength, layout.merges, [&](int k, int s, int index) {
-            std::string name = dir + (s == k + 1 ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(k + 1 - s)) +
-                               (weighted ? "_weighted" : "_unweighted");
-            ok = ok && writePNG(r.strategyImages[2 * index + weighted], name + ".png", exposure) &&
-                 writePFM(r.strategyImages[2 * index + weighted], name + ".pfm");
-        });
-        std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
-        ok = ok && writePNGBytes(pyramidCanvas(r, maxLength, exposure, weighted, layout, rowStops), layout.canvasW, layout.canvasH, pyramid);
-        if (ok) out << "wrote " << pyramid << "\n";
-    }
-    if (ok) {
-        out << "pyramid rows k = 1.." << maxLength << " brightened by";
-        for (int k = 1; k <= maxLength; ++k) out << " +" << rowStops[k];
-        out << " stops (printed in each tile's label)\n";
-    }
-    return ok;
-}
-
 // == 10. Command line ===========================================================================
-inline const char* methodName(Method m) {
-    switch (m) {
-        case Method::PT: return "pt";
-        case Method::NEE: return "nee";
-        case Method::LT: return "lt";
-        case Method::IR: return "ir";
-        case Method::BDPT: return "bdpt";
-        case Method::VCM: return "vcm";
-        case Method::MLT: return "mlt";
-        case Method::MMLT: return "mmlt";
+constexpr const char* kMethodNames[] = {"pt", "nee", "lt", "ir", "bdpt", "vcm", "mlt", "mmlt"};  // in Method's order
+constexpr const char* kHeuristicNames[] = {"balance", "power", "max", "uniform"};                   // in Heuristic's order
+constexpr const char* kRouletteNames[] = {"throughput", "albedo", "off"};                           // in Roulette's order
+inline const char* methodName(Method m) { return kMethodNames[int(m)]; }
+
+struct CommandLine {
+    std::string scenePath, out = "render.png";
+    RenderOptions opt;
+    Conventions conventions;     // the deliberate mistakes, given to the scene once it is loaded
+    int width = 0, height = 0;   // --res; 0: the scene's
+    bool help = false;
+    int strategyLength = 5;
+    double liveSeconds = 0;      // --live: rewrite the PNG at most this often while rendering
+    std::string strategiesDir, refPath, logPath;
+    std::vector<std::string> failureLogs;
+    std::string pfmA, pfmB;      // --compare, --average or --ratio: the two images
+    bool average = false;        // --average: write their mean to out
+    bool ratio = false;          // --ratio: write their block ratio to out
+    bool exposureGiven = false;  // else the scene's exposure directive sets it
+    std::set<std::string> given; // the options on the line
+};
+
+// The words after the scene, read one option at a time. Every mistake ends in "(see --help)".
+struct ArgReader {
+    const std::vector<std::string>& args;
+    size_t i = 0;
+    [[noreturn]] static void fail(const std::string& m) { throw InputError("bdpt: " + m + " (see --help)"); }
+    std::string value() {
+        if (i + 1 >= args.size()) fail("option " + args[i] + " needs a value");
+        return args[++i];
     }
-    return "?";
+    double number(double lo, double hi) {
+        auto shortNumber = [](double x) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%g", x);
+            return std::string(text);
+        };
+        std::string name = args[i], v = value();
+        char* end = nullptr;
+        double x = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != 0 || !std::isfinite(x) || x < lo || x > hi)
+            fail("option " + name + " needs a number from " + shortNumber(lo) + " to " + shortNumber(hi) + ", got '" + printable(v) + "'");
+        return x;
+    }
+    long long integer(double lo, double hi) {
+        std::string name = args[i];
+        double x = number(lo, hi);
+        if (x != std::floor(x)) fail("option " + name + " needs a whole number, got '" + printable(args[i]) + "'");
+        return (long long)x;
+    }
+    template <class E, size_t N>
+    E choice(const char* what, const char* const (&names)[N]) {  // one of names, as the enum E in the same order
+        std::string v = value(), list;
+        for (size_t k = 0; k < N; ++k) {
+            if (v == names[k]) return E(k);
+            list += (k ? ", " : "") + std::string(names[k]);
+        }
+        fail(std::string("unknown ") + what + " '" + printable(v) + "' (" + list + ")");
+    }
+};
+
+// Every option once: its name and value, the methods it applies to (none listed: every method)
+// and how a refusal names them, its help, and what it sets. Parsing, the refusal of an option the
+// method would ignore, and --help all read this table. A row without a name is a line of --help.
+struct OptionSpec {
+    const char* name;
+    const char* value;
+    std::vector<Method> methods;
+    const char* whose;
+    const char* help;
+    void (*apply)(CommandLine&, ArgReader&);
+};
+const std::vector<Method> kBdptFamily = {Method::BDPT, Method::VCM, Method::MLT, Method::MMLT};
+const std::vector<Method> kLightPathMethods = {Method::LT, Method::IR, Method::BDPT, Method::VCM, Method::MLT, Method::MMLT};
+const std::vector<Method> kMetropolis = {Method::MLT, Method::MMLT};
+constexpr const char* kBdptFamilyName = "--method bdpt, vcm, mlt and mmlt";
+constexpr const char* kLightPathName = "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, mmlt)";
+using CL = CommandLine;  // the table's setters are short lambdas
+using A = ArgReader;
+inline const std::vector<OptionSpec> kOptions = {
+    {nullptr, "", {}, "", "usage: bdpt SCENE [options]\n"
+     "Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)\n"
+     "and, beside it, a PFM with the linear values. For example:\n"
+     "  ./bdpt scenes/cornell.scene --method bdpt --spp 64 --out build/cornell.png\n\nMethod", nullptr},
+    {"--method", "M", {}, "",
+     "pt   (a) eye tracing: emission counted only when a path hits a light\n"
+     "nee  (b) path tracing with next-event estimation\n"
+     "lt   (c) light tracing: light paths splatted onto the film\n"
+     "ir   (d) instant radiosity: camera paths gather virtual point lights\n"
+     "bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)\n"
+     "vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)\n"
+     "mlt  (see later) Metropolis light transport: Markov chains that mutate the\n"
+     "     random numbers of bdpt's whole sample (Kelemen's primary sample space);\n"
+     "     --spp N means N mutations per pixel on average\n"
+     "mmlt (see later) multiplexed MLT (pbrt's): the state also picks one path\n"
+     "     length and one strategy (s,t), weighted by bdpt's MIS",
+     [](CL& cl, A& a) { cl.opt.method = a.choice<Method>("method", kMethodNames); }},
+    {"--mis", "", {Method::NEE}, "--method nee", "nee: weight light and BSDF sampling with the power heuristic",
+     [](CL& cl, A&) { cl.opt.mis = true; }},
+    {"--vpls", "N", {Method::IR}, "--method ir", "ir: light paths traced per pass, each leaving VPLs (default 16)",
+     [](CL& cl, A& a) { cl.opt.vplPaths = int(a.integer(1, 1e6)); }},
+    {"--clamp", "C", {Method::IR}, "--method ir", "ir: bound the geometry term G by C (panel (e)); prints the energy removed",
+     [](CL& cl, A& a) { cl.opt.clamp = float(a.number(1e-30, 1e30)); }},
+    {"--heuristic", "H", kBdptFamily, kBdptFamilyName,
+     "bdpt, vcm, mlt, mmlt: MIS weights balance (default), power, max (the\n"
+     "slides' maximum heuristic) or uniform (1 / number of strategies able to\nmake the path)",
+     [](CL& cl, A& a) { cl.opt.heuristic = a.choice<Heuristic>("heuristic", kHeuristicNames); }},
+    {"--radius", "R", {Method::VCM}, "--method vcm",
+     "vcm: merging radius r_0 of the first pass (default: one pixel's footprint\n"
+     "where the central camera ray meets the scene); 0: no merging, as bdpt",
+     [](CL& cl, A& a) { cl.opt.mergeRadius = float(a.number(0, 1e30)); }},
+    {"--alpha", "A", {Method::VCM}, "--method vcm",
+     "vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1\n(default 0.75)",
+     [](CL& cl, A& a) { cl.opt.alpha = float(a.number(1e-3, 1)); }},
+    {"--strategies", "DIR", {Method::BDPT, Method::VCM}, "--method bdpt and vcm",
+     "bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length\n"
+     "(vcm: and one of all merges per path length), unweighted and MIS-weighted,\n"
+     "and two pyramid montages, into DIR (each pyramid row brightened by the\n"
+     "stops printed in its tiles' labels)",
+     [](CL& cl, A& a) { cl.strategiesDir = a.value(); }},
+    {"--strategy-length", "K", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)",
+     "longest path (segments) with per-strategy images (default 5)",
+     [](CL& cl, A& a) { cl.strategyLength = int(a.integer(1, 12)); }},
+    {"--large-step", "P", kMetropolis, "--method mlt and mmlt",
+     "mlt, mmlt: probability of a large step, every number drawn afresh (0.3)",
+     [](CL& cl, A& a) { cl.opt.largeStep = float(a.number(0, 1)); }},
+    {"--sigma", "S", kMetropolis, "--method mlt and mmlt",
+     "mlt, mmlt: a small step moves each number by a normal of deviation S,\nwrapped into [0,1) (default 0.01)",
+     [](CL& cl, A& a) { cl.opt.sigma = float(a.number(1e-6, 10)); }},
+    {"--bootstrap", "N", kMetropolis, "--method mlt and mmlt",
+     "mlt, mmlt: independent samples that estimate the image's normalisation b\n"
+     "and choose the chains' starts in proportion to their brightness (default\n"
+     "100000; mmlt 1000000, spread over the path lengths)",
+     [](CL& cl, A& a) { cl.opt.bootstrap = int(a.integer(1, 1e8)); }},
+    {"--chains", "N", kMetropolis, "--method mlt and mmlt", "mlt, mmlt: Markov chains, each its own random stream (default 256)",
+     [](CL& cl, A& a) { cl.opt.chains = int(a.integer(1, 1e6)); }},
+    {"--maxdepth", "D", {}, "", "at most D bounces (scattering vertices) per path (default 32)",
+     [](CL& cl, A& a) { cl.opt.maxDepth = int(a.integer(0, 10000)); }},
+    {"--roulette", "R", kLightPathMethods, kLightPathName,
+     "lt, ir, bdpt, vcm, mlt, mmlt: how subpaths end: throughput (q from the\n"
+     "throughput after --rr-start bounces, as pt and nee), albedo (q = the\n"
+     "material's albedo at every vertex, counted in bdpt's MIS densities) or off\n"
+     "(only --maxdepth); default albedo",
+     [](CL& cl, A& a) { cl.opt.roulette = a.choice<Roulette>("roulette", kRouletteNames); }},
+    {"--rr-start", "N", {}, "",
+     "pt, nee (and --roulette throughput): Russian roulette from bounce N on\n"
+     "(default 3); N > --maxdepth turns it off (lecture notes, page 9)",
+     [](CL& cl, A& a) { cl.opt.rrStart = int(a.integer(0, 10001)); }},
+    {nullptr, "", {}, "", "Deliberate mistakes (slides: \"Non-symmetric scattering\")", nullptr},
+    {"--symmetric-refraction", "", {}, "",
+     "swap the two refraction rules: eye paths scale refracted radiance\n"
+     "like power (no eta^2), light paths scale power like radiance (eta^2)",
+     [](CL& cl, A&) { cl.conventions.symmetricRefraction = true; }},
+    {"--no-adjoint-correction", "", kLightPathMethods, kLightPathName,
+     "light paths use the shading-normal BSDF unchanged (not its adjoint)",
+     [](CL& cl, A&) { cl.conventions.noAdjointCorrection = true; }},
+    {"--fixed-ray-offset", "", {}, "",
+     "push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)\n"
+     "instead of the hit point's error bound (see tests/thin-gap.scene)",
+     [](CL& cl, A&) { cl.conventions.fixedRayOffset = true; }},
+    {"--delta-density-one", "", kBdptFamily, kBdptFamilyName,
+     "bdpt, vcm, mlt, mmlt: after a mirror or glass, store the MIS densities\n"
+     "as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy\ns = 0",
+     [](CL& cl, A&) { cl.conventions.deltaDensityOne = true; }},
+    {"--fixed-start", "", kMetropolis, "--method mlt and mmlt",
+     "mlt, mmlt: every chain starts from one fixed state (the first bootstrap\n"
+     "sample that carries light) instead of one chosen in proportion to its\n"
+     "brightness: start-up bias, visible at short runs",
+     [](CL& cl, A&) { cl.opt.fixedStart = true; }},
+    {nullptr, "", {}, "", "Sampling", nullptr},
+    {"--spp", "N", {}, "", "N passes of one sample per pixel (default 16)", [](CL& cl, A& a) { cl.opt.spp = int(a.integer(1, 1e8)); }},
+    {"--time", "SECONDS", {}, "", "render passes until SECONDS have passed (replaces --spp)",
+     [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7); }},
+    {"--seed", "S", {}, "", "seed of every pixel's random stream (default 1)", [](CL& cl, A& a) { cl.opt.seed = uint64_t(a.integer(0, 9e15)); }},
+    {"--threads", "N", {}, "", "worker threads (default: all cores); the image does not depend on N",
+     [](CL& cl, A& a) { cl.opt.threads = int(a.integer(1, 1024)); }},
+    {nullptr, "", {}, "", "Output", nullptr},
+    {"--out", "FILE.png", {}, "", "PNG file (default render.png); the PFM goes to FILE.pfm", [](CL& cl, A& a) { cl.out = a.value(); }},
+    {"--res", "WxH", {}, "", "override the scene's resolution (e.g. --res 128x128)",
+     [](CL& cl, A& a) {
+         std::string v = a.value();
+         int w = 0, h = 0;
+         char tail = 0;
+         if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+             a.fail("option --res needs WIDTHxHEIGHT, each 1 to 16384, got '" + printable(v) + "'");
+         if (double(w) * h > 64e6) a.fail("option --res: " + printable(v) + " is larger than 64 megapixels (as in scene files)");
+         cl.width = w;
+         cl.height = h;
+     }},
+    {"--exposure", "STOPS", {}, "", "scale the PNG by 2^STOPS (the PFM stays linear)",
+     [](CL& cl, A& a) { cl.opt.exposure = float(a.number(-50, 50)), cl.exposureGiven = true; }},
+    {"--quiet", "", {}, "", "no progress bar and no summary line", [](CL& cl, A&) { cl.opt.quiet = true; }},
+    {"--live", "SECONDS", {}, "",
+     "while rendering, rewrite the PNG from the passes so far at most every\n"
+     "SECONDS (whole, by rename): an image viewer that reloads it shows the image\n"
+     "converging (on a projector, say); --log is written as the passes finish",
+     [](CL& cl, A& a) { cl.liveSeconds = a.number(1e-3, 1e6); }},
+    {"--help", "", {}, "", "this text", [](CL& cl, A&) { cl.help = true; }},
+    {nullptr, "", {}, "",
+     "Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;\n"
+     "a second Ctrl-C (a second or more after the first) abandons the render: no file, status 3.\n"
+     "Speed against accuracy", nullptr},
+    {"--ref", "FILE.pfm", {}, "",
+     "reference image (same resolution): after every pass compute RMSE, relMSE,\n"
+     "the relative bias of the mean and the firefly measure against it",
+     [](CL& cl, A& a) { cl.refPath = a.value(); }},
+    {"--log", "FILE.csv", {}, "",
+     "one row per pass: scene, method, options, pass, spp, seconds, rmse, relmse,\n"
+     "mean, bias, firefly, nan_count, rmse_without_lamp (the lamp's pixels and their\n"
+     "neighbours left out); error columns empty without --ref; written as the\n"
+     "passes finish, flushed after each (tail -f follows the run)",
+     [](CL& cl, A& a) { cl.logPath = a.value(); }},
+    {"--compare", "A.pfm B.pfm", {}, "", "print rmse, relmse and bias of A against B (e.g. two seeds of a reference)",
+     [](CL& cl, A& a) { cl.pfmA = a.value(), cl.pfmB = a.value(); }},
+    {"--average", "A.pfm B.pfm", {}, "",
+     "write the mean of A and B to --out (required; and its PFM): a reference\nfrom two seeds",
+     [](CL& cl, A& a) { cl.average = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
+    {"--ratio", "A.pfm B.pfm", {}, "",
+     "write A/B over 4x4-pixel blocks to --out (required) in false colour\n"
+     "(white: equal, red: A brighter, blue: A darker, full colour at one stop; the\n"
+     "PFM holds the ratios) and print its percentiles: where two methods differ",
+     [](CL& cl, A& a) { cl.ratio = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
+    {"--failure-table", "LOG.csv...", {}, "",
+     "print the README's failure table (markdown) from such logs:\n"
+     "slope of log(rmse) against log(seconds), bias, fireflies, NaN count",
+     [](CL& cl, A& a) {
+         cl.failureLogs.assign(a.args.begin() + a.i + 1, a.args.end());
+         if (cl.failureLogs.empty()) a.fail("--failure-table needs log files");
+         a.i = a.args.size();
+     }},
+    {nullptr, "", {}, "",
+     "Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene\n"
+     "file or option, 3 abandoned by a second Ctrl-C (nothing written), 4 out of memory (nothing\n"
+     "written), 130 interrupted by Ctrl-C (the completed passes written).\n"
+     "The make targets (charts, efficiency, bench, panels, ...): make help. All write into build/ but\n"
+     "make figures and make refs, which rewrite the committed figures, tables and references.", nullptr},
+};
+
+// --help, from the table: each option's name and value, its help beside it from column 20.
+inline std::string usage() {
+    std::string text;
+    for (const OptionSpec& o : kOptions) {
+        if (!o.name) { text += std::string(o.help) + "\n"; continue; }
+        std::string head = "  " + std::string(o.name) + (*o.value ? " " + std::string(o.value) : "");
+        text += head + std::string(head.size() < 20 ? 20 - head.size() : 2, ' ');
+        for (const char* c = o.help; *c; ++c) text += *c == '\n' ? "\n" + std::string(20, ' ') : std::string(1, *c);
+        text += "\n";
+    }
+    return text;
+}
+
+// What no single option can check: the combinations, and options the chosen method would ignore.
+inline void checkCombinations(CommandLine& cl) {
+    auto given = [&](const char* o) { return cl.given.count(o) > 0; };
+    if (!hasExtension(cl.out, ".png")) ArgReader::fail("--out must name a .png file (the PFM goes beside it), got '" + printable(cl.out) + "'");
+    if (!cl.logPath.empty() && !hasExtension(cl.logPath, ".csv")) ArgReader::fail("--log must name a .csv file, got '" + printable(cl.logPath) + "'");
+    if ((cl.average || cl.ratio) && !given("--out"))
+        ArgReader::fail(std::string(cl.average ? "--average" : "--ratio") + " writes an image: name it with --out FILE.png");
+    if (!cl.pfmA.empty()) return;
+    for (const OptionSpec& o : kOptions)
+        if (o.name && given(o.name) && !o.methods.empty() && std::find(o.methods.begin(), o.methods.end(), cl.opt.method) == o.methods.end())
+            ArgReader::fail(std::string(o.name) + " applies to " + o.whose + ", not to --method " + methodName(cl.opt.method));
+    if (given("--strategy-length") && cl.strategiesDir.empty()) ArgReader::fail("--strategy-length applies with --strategies DIR");
+    // Only the throughput rule has a start: the albedo rule acts from the first bounce on.
+    bool throughputRoulette = cl.opt.method == Method::PT || cl.opt.method == Method::NEE || cl.opt.roulette == Roulette::Throughput;
+    if (given("--rr-start") && !throughputRoulette)
+        ArgReader::fail(std::string("--rr-start applies to pt, nee and --roulette throughput; --method ") + methodName(cl.opt.method) +
+                        (cl.opt.roulette == Roulette::Albedo ? " ends its subpaths by --roulette albedo (the default), which acts from the first bounce on"
+                                                             : " has --roulette off: no roulette at all"));
+    if (given("--time") && given("--spp"))
+        ArgReader::fail("--time and --spp both given: --time renders passes until the time is up, --spp a number of them; give one");
+    if (!cl.strategiesDir.empty()) cl.opt.strategyMaxLength = cl.strategyLength;
+}
+
+inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
+    CommandLine cl;
+    ArgReader in{args};
+    for (; in.i < args.size(); ++in.i) {
+        const std::string& a = args[in.i] == "-h" ? "--help" : args[in.i];
+        if (a.size() > 2 && a[0] == '-' && a[1] == '-' && !cl.given.insert(a).second)
+            in.fail("option " + printable(a) + " given twice (which one did you mean?)");
+        auto option = std::find_if(kOptions.begin(), kOptions.end(), [&](const OptionSpec& o) { return o.name && a == o.name; });
+        if (option != kOptions.end()) {
+            option->apply(cl, in);
+        } else if (!a.empty() && a[0] == '-') {
+            size_t equals = a.find('=');
+            in.fail("unknown option '" + printable(a) + "'" +
+                    (equals != std::string::npos ? " (write '" + printable(a.substr(0, equals)) + " " + printable(a.substr(equals + 1)) + "')" : ""));
+        } else if (cl.scenePath.empty()) {
+            cl.scenePath = a;
+        } else {
+            in.fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
+        }
+    }
+    if (!cl.help && cl.failureLogs.empty() && cl.pfmA.empty() && cl.scenePath.empty()) in.fail("no scene file given");
+    if (!cl.help && cl.failureLogs.empty()) checkCombinations(cl);
+    return cl;
 }
 
 inline std::string optionsLabel(const RenderOptions& o) {  // what distinguishes a run in the charts
     std::ostringstream s;
     if (o.method == Method::NEE && o.mis) s << "--mis ";
     if (o.method == Method::IR) s << "--vpls " << o.vplPaths << (o.clamp > 0 ? " --clamp " : "") << (o.clamp > 0 ? std::to_string(o.clamp) : "") << " ";
-    if (o.method == Method::BDPT || o.method == Method::VCM) {
-        const char* h[] = {"balance", "power", "max", "uniform"};
-        s << "--heuristic " << h[int(o.heuristic)] << " ";
-    }
+    if (o.method == Method::BDPT || o.method == Method::VCM) s << "--heuristic " << kHeuristicNames[int(o.heuristic)] << " ";
     if (o.method == Method::VCM) s << "--alpha " << o.alpha << " ";
     if (isMetropolis(o.method) && o.fixedStart) s << "--fixed-start ";
     if (o.maxDepth != 32) s << "--maxdepth " << o.maxDepth;
@@ -3170,102 +3440,6 @@ inline int printFailureTable(const std::vector<std::string>& logs, std::ostream&
     return 0;
 }
 
-const char* kUsage = R"(usage: bdpt SCENE [options]
-Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)
-and, beside it, a PFM with the linear values. For example:
-  ./bdpt scenes/cornell.scene --method bdpt --spp 64 --out build/cornell.png
-
-Method
-  --method M        pt   (a) eye tracing: emission counted only when a path hits a light
-                    nee  (b) path tracing with next-event estimation
-                    lt   (c) light tracing: light paths splatted onto the film
-                    ir   (d) instant radiosity: camera paths gather virtual point lights
-                    bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)
-                    vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)
-                    mlt  (see later) Metropolis light transport: Markov chains that mutate the
-                         random numbers of bdpt's whole sample (Kelemen's primary sample space);
-                         --spp N means N mutations per pixel on average
-                    mmlt (see later) multiplexed MLT (pbrt's): the state also picks one path
-                         length and one strategy (s,t), weighted by bdpt's MIS
-  --mis             nee: weight light and BSDF sampling with the power heuristic
-  --vpls N          ir: light paths traced per pass, each leaving VPLs (default 16)
-  --clamp C         ir: bound the geometry term G by C (panel (e)); prints the energy removed
-  --heuristic H     bdpt, vcm, mlt, mmlt: MIS weights balance (default), power, max (the
-                    slides' maximum heuristic) or uniform (1 / number of strategies able to
-                    make the path)
-  --radius R        vcm: merging radius r_0 of the first pass (default: one pixel's footprint
-                    where the central camera ray meets the scene); 0: no merging, as bdpt
-  --alpha A         vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1
-                    (default 0.75)
-  --strategies DIR  bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length
-                    (vcm: and one of all merges per path length), unweighted and MIS-weighted,
-                    and two pyramid montages, into DIR (each pyramid row brightened by the
-                    stops printed in its tiles' labels)
-  --strategy-length K  longest path (segments) with per-strategy images (default 5)
-  --large-step P    mlt, mmlt: probability of a large step, every number drawn afresh (0.3)
-  --sigma S         mlt, mmlt: a small step moves each number by a normal of deviation S,
-                    wrapped into [0,1) (default 0.01)
-  --bootstrap N     mlt, mmlt: independent samples that estimate the image's normalisation b
-                    and choose the chains' starts in proportion to their brightness (default
-                    100000; mmlt 1000000, spread over the path lengths)
-  --chains N        mlt, mmlt: Markov chains, each its own random stream (default 256)
-  --maxdepth D      at most D bounces (scattering vertices) per path (default 32)
-  --roulette R      lt, ir, bdpt, vcm, mlt, mmlt: how subpaths end: throughput (q from the
-                    throughput after --rr-start bounces, as pt and nee), albedo (q = the
-                    material's albedo at every vertex, counted in bdpt's MIS densities) or off
-                    (only --maxdepth); default albedo
-  --rr-start N      pt, nee (and --roulette throughput): Russian roulette from bounce N on
-                    (default 3); N > --maxdepth turns it off (lecture notes, page 9)
-Deliberate mistakes (slides: "Non-symmetric scattering")
-  --symmetric-refraction   swap the two refraction rules: eye paths scale refracted radiance
-                    like power (no eta^2), light paths scale power like radiance (eta^2)
-  --no-adjoint-correction  light paths use the shading-normal BSDF unchanged (not its adjoint)
-  --fixed-ray-offset       push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)
-                    instead of the hit point's error bound (see tests/thin-gap.scene)
-  --delta-density-one      bdpt, vcm, mlt, mmlt: after a mirror or glass, store the MIS densities
-                    as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy
-                    s = 0
-  --fixed-start     mlt, mmlt: every chain starts from one fixed state (the first bootstrap
-                    sample that carries light) instead of one chosen in proportion to its
-                    brightness: start-up bias, visible at short runs
-Sampling
-  --spp N           N passes of one sample per pixel (default 16)
-  --time SECONDS    render passes until SECONDS have passed (replaces --spp)
-  --seed S          seed of every pixel's random stream (default 1)
-  --threads N       worker threads (default: all cores); the image does not depend on N
-Output
-  --out FILE.png    PNG file (default render.png); the PFM goes to FILE.pfm
-  --res WxH         override the scene's resolution (e.g. --res 128x128)
-  --exposure STOPS  scale the PNG by 2^STOPS (the PFM stays linear)
-  --quiet           no progress bar and no summary line
-  --live SECONDS    while rendering, rewrite the PNG from the passes so far at most every
-                    SECONDS (whole, by rename): an image viewer that reloads it shows the image
-                    converging (on a projector, say); --log is written as the passes finish
-  --help            this text
-Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;
-a second Ctrl-C (a second or more after the first) abandons the render: no file, status 3.
-Speed against accuracy
-  --ref FILE.pfm    reference image (same resolution): after every pass compute RMSE, relMSE,
-                    the relative bias of the mean and the firefly measure against it
-  --log FILE.csv    one row per pass: scene, method, options, pass, spp, seconds, rmse, relmse,
-                    mean, bias, firefly, nan_count, rmse_without_lamp (the lamp's pixels and their
-                    neighbours left out); error columns empty without --ref; written as the
-                    passes finish, flushed after each (tail -f follows the run)
-  --compare A.pfm B.pfm  print rmse, relmse and bias of A against B (e.g. two seeds of a reference)
-  --average A.pfm B.pfm  write the mean of A and B to --out (required; and its PFM): a reference
-                    from two seeds
-  --ratio A.pfm B.pfm    write A/B over 4x4-pixel blocks to --out (required) in false colour
-                    (white: equal, red: A brighter, blue: A darker, full colour at one stop; the
-                    PFM holds the ratios) and print its percentiles: where two methods differ
-  --failure-table LOG.csv...  print the README's failure table (markdown) from such logs:
-                    slope of log(rmse) against log(seconds), bias, fireflies, NaN count
-Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene
-file or option, 3 abandoned by a second Ctrl-C (nothing written), 4 out of memory (nothing
-written), 130 interrupted by Ctrl-C (the completed passes written).
-The make targets (charts, efficiency, bench, panels, ...): make help. All write into build/ but
-make figures and make refs, which rewrite the committed figures, tables and references.
-)";
-
 // --ratio: A/B over 4x4 blocks as a false-colour PNG and a PFM of the ratios (0 where undefined),
 // and its percentiles on out. Returns the exit status.
 inline int writeRatio(const Image& a, const Image& b, const std::string& png, std::ostream& out, std::ostream& err) {
@@ -3294,183 +3468,7 @@ inline int writeRatio(const Image& a, const Image& b, const std::string& png, st
     return 1;
 }
 
-struct CommandLine {
-    std::string scenePath, out = "render.png";
-    RenderOptions opt;
-    int width = 0, height = 0;
-    bool help = false, symmetricRefraction = false, noAdjointCorrection = false, fixedRayOffset = false, deltaDensityOne = false;
-    int strategyLength = 5;
-    double radius = -1;          // vcm --radius; < 0: not given
-    double liveSeconds = 0;      // --live: rewrite the PNG at most this often while rendering
-    std::string strategiesDir, refPath, logPath;
-    std::vector<std::string> failureLogs;
-    std::string pfmA, pfmB;  // --compare, --average or --ratio: the two images
-    bool average = false;    // --average: write their mean to out
-    bool ratio = false;      // --ratio: write their block ratio to out
-    bool exposureGiven = false;  // else the scene's exposure directive sets it
-};
-
-inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
-    CommandLine cl;
-    auto fail = [](const std::string& m) -> void { throw InputError("bdpt: " + m + " (see --help)"); };
-    auto value = [&](size_t& i) -> std::string {
-        if (i + 1 >= args.size()) fail("option " + args[i] + " needs a value");
-        return args[++i];
-    };
-    auto shortNumber = [](double x) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%g", x);
-        return std::string(text);
-    };
-    auto number = [&](size_t& i, double lo, double hi) -> double {
-        std::string name = args[i], v = value(i);
-        char* end = nullptr;
-        double x = std::strtod(v.c_str(), &end);
-        if (end == v.c_str() || *end != 0 || !std::isfinite(x) || x < lo || x > hi)
-            fail("option " + name + " needs a number from " + shortNumber(lo) + " to " + shortNumber(hi) + ", got '" +
-                 printable(v) + "'");
-        return x;
-    };
-    std::set<std::string> given;  // the options on the line, to refuse those that do not apply
-    auto integer = [&](size_t& i, double lo, double hi) -> long long {
-        std::string name = args[i];
-        double x = number(i, lo, hi);
-        if (x != std::floor(x)) fail("option " + name + " needs a whole number, got '" + printable(args[i]) + "'");
-        return (long long)x;
-    };
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a.size() > 2 && a[0] == '-' && a[1] == '-' && !given.insert(a).second)
-            fail("option " + printable(a) + " given twice (which one did you mean?)");
-        if (a == "--help" || a == "-h") cl.help = true;
-        else if (a == "--method") {
-            std::string m = value(i);
-            if (m == "pt") cl.opt.method = Method::PT;
-            else if (m == "nee") cl.opt.method = Method::NEE;
-            else if (m == "lt") cl.opt.method = Method::LT;
-            else if (m == "ir") cl.opt.method = Method::IR;
-            else if (m == "bdpt") cl.opt.method = Method::BDPT;
-            else if (m == "vcm") cl.opt.method = Method::VCM;
-            else if (m == "mlt") cl.opt.method = Method::MLT;
-            else if (m == "mmlt") cl.opt.method = Method::MMLT;
-            else fail("unknown method '" + printable(m) + "' (pt, nee, lt, ir, bdpt, vcm, mlt, mmlt)");
-        } else if (a == "--heuristic") {
-            std::string h = value(i);
-            if (h == "balance") cl.opt.heuristic = Heuristic::Balance;
-            else if (h == "power") cl.opt.heuristic = Heuristic::Power;
-            else if (h == "max") cl.opt.heuristic = Heuristic::Max;
-            else if (h == "uniform") cl.opt.heuristic = Heuristic::Uniform;
-            else fail("unknown heuristic '" + printable(h) + "' (balance, power, max, uniform)");
-        } else if (a == "--roulette") {
-            std::string r = value(i);
-            if (r == "throughput") cl.opt.roulette = Roulette::Throughput;
-            else if (r == "albedo") cl.opt.roulette = Roulette::Albedo;
-            else if (r == "off") cl.opt.roulette = Roulette::Off;
-            else fail("unknown roulette '" + printable(r) + "' (throughput, albedo, off)");
-        } else if (a == "--strategies") {
-            cl.strategiesDir = value(i);
-        } else if (a == "--mis") cl.opt.mis = true;
-        else if (a == "--radius") cl.radius = number(i, 0, 1e30);
-        else if (a == "--alpha") cl.opt.alpha = float(number(i, 1e-3, 1));
-        else if (a == "--vpls") cl.opt.vplPaths = int(integer(i, 1, 1e6));
-        else if (a == "--strategy-length") cl.strategyLength = int(integer(i, 1, 12));
-        else if (a == "--clamp") cl.opt.clamp = float(number(i, 1e-30, 1e30));
-        else if (a == "--symmetric-refraction") cl.symmetricRefraction = true;
-        else if (a == "--no-adjoint-correction") cl.noAdjointCorrection = true;
-        else if (a == "--fixed-ray-offset") cl.fixedRayOffset = true;
-        else if (a == "--delta-density-one") cl.deltaDensityOne = true;
-        else if (a == "--large-step") cl.opt.largeStep = float(number(i, 0, 1));
-        else if (a == "--sigma") cl.opt.sigma = float(number(i, 1e-6, 10));
-        else if (a == "--bootstrap") cl.opt.bootstrap = int(integer(i, 1, 1e8));
-        else if (a == "--chains") cl.opt.chains = int(integer(i, 1, 1e6));
-        else if (a == "--fixed-start") cl.opt.fixedStart = true;
-        else if (a == "--live") cl.liveSeconds = number(i, 1e-3, 1e6);
-        else if (a == "--maxdepth") cl.opt.maxDepth = int(integer(i, 0, 10000));
-        else if (a == "--rr-start") cl.opt.rrStart = int(integer(i, 0, 10001));
-        else if (a == "--spp") cl.opt.spp = int(integer(i, 1, 1e8));
-        else if (a == "--time") cl.opt.seconds = number(i, 1e-3, 1e7);
-        else if (a == "--seed") cl.opt.seed = uint64_t(integer(i, 0, 9e15));
-        else if (a == "--threads") cl.opt.threads = int(integer(i, 1, 1024));
-        else if (a == "--out") cl.out = value(i);
-        else if (a == "--exposure") cl.opt.exposure = float(number(i, -50, 50)), cl.exposureGiven = true;
-        else if (a == "--quiet") cl.opt.quiet = true;
-        else if (a == "--ref") cl.refPath = value(i);
-        else if (a == "--log") cl.logPath = value(i);
-        else if (a == "--compare" || a == "--average" || a == "--ratio") {
-            cl.average = a == "--average";
-            cl.ratio = a == "--ratio";
-            cl.pfmA = value(i);
-            cl.pfmB = value(i);
-        } else if (a == "--failure-table") {
-            cl.failureLogs.assign(args.begin() + i + 1, args.end());
-            if (cl.failureLogs.empty()) fail("--failure-table needs log files");
-            break;
-        }
-        else if (a == "--res") {
-            std::string v = value(i);
-            int w = 0, h = 0;
-            char tail = 0;
-            if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
-                fail("option --res needs WIDTHxHEIGHT, each 1 to 16384, got '" + printable(v) + "'");
-            if (double(w) * h > 64e6) fail("option --res: " + printable(v) + " is larger than 64 megapixels (as in scene files)");
-            cl.width = w;
-            cl.height = h;
-        } else if (!a.empty() && a[0] == '-') {
-            size_t equals = a.find('=');
-            fail("unknown option '" + printable(a) + "'" +
-                 (equals != std::string::npos ? " (write '" + printable(a.substr(0, equals)) + " " + printable(a.substr(equals + 1)) + "')" : ""));
-        }
-        else if (cl.scenePath.empty()) cl.scenePath = a;
-        else fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
-    }
-    if (!cl.help && cl.failureLogs.empty() && cl.pfmA.empty() && cl.scenePath.empty()) fail("no scene file given");
-    if (cl.help || !cl.failureLogs.empty()) return cl;
-    if (!hasExtension(cl.out, ".png")) fail("--out must name a .png file (the PFM goes beside it), got '" + printable(cl.out) + "'");
-    if (!cl.logPath.empty() && !hasExtension(cl.logPath, ".csv")) fail("--log must name a .csv file, got '" + printable(cl.logPath) + "'");
-    if ((cl.average || cl.ratio) && !given.count("--out"))
-        fail(std::string(cl.average ? "--average" : "--ratio") + " writes an image: name it with --out FILE.png");
-    if (!cl.pfmA.empty()) return cl;
-    // Options that would be ignored by the chosen method are mistakes: say whose they are.
-    auto onlyFor = [&](const char* option, std::initializer_list<Method> methods, const char* whose) {
-        if (given.count(option) && std::find(methods.begin(), methods.end(), cl.opt.method) == methods.end())
-            fail(std::string(option) + " applies to " + whose + ", not to --method " + methodName(cl.opt.method));
-    };
-    onlyFor("--mis", {Method::NEE}, "--method nee");
-    onlyFor("--heuristic", {Method::BDPT, Method::VCM, Method::MLT, Method::MMLT}, "--method bdpt, vcm, mlt and mmlt");
-    onlyFor("--strategies", {Method::BDPT, Method::VCM}, "--method bdpt and vcm");
-    onlyFor("--strategy-length", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)");
-    onlyFor("--radius", {Method::VCM}, "--method vcm");
-    onlyFor("--delta-density-one", {Method::BDPT, Method::VCM, Method::MLT, Method::MMLT}, "--method bdpt, vcm, mlt and mmlt");
-    for (const char* o : {"--large-step", "--sigma", "--bootstrap", "--chains", "--fixed-start"})
-        onlyFor(o, {Method::MLT, Method::MMLT}, "--method mlt and mmlt");
-    onlyFor("--alpha", {Method::VCM}, "--method vcm");
-    onlyFor("--vpls", {Method::IR}, "--method ir");
-    onlyFor("--clamp", {Method::IR}, "--method ir");
-    const std::initializer_list<Method> lightPathMethods = {Method::LT, Method::IR, Method::BDPT, Method::VCM, Method::MLT, Method::MMLT};
-    onlyFor("--roulette", lightPathMethods, "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, mmlt)");
-    onlyFor("--no-adjoint-correction", lightPathMethods, "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, mmlt)");
-    if (given.count("--strategy-length") && cl.strategiesDir.empty()) fail("--strategy-length applies with --strategies DIR");
-    // Only the throughput rule has a start: the albedo rule acts from the first bounce on.
-    bool throughputRoulette = cl.opt.method == Method::PT || cl.opt.method == Method::NEE || cl.opt.roulette == Roulette::Throughput;
-    if (given.count("--rr-start") && !throughputRoulette)
-        fail(std::string("--rr-start applies to pt, nee and --roulette throughput; --method ") + methodName(cl.opt.method) +
-             (cl.opt.roulette == Roulette::Albedo ? " ends its subpaths by --roulette albedo (the default), which acts from the first bounce on"
-                                                  : " has --roulette off: no roulette at all"));
-    if (given.count("--time") && given.count("--spp"))
-        fail("--time and --spp both given: --time renders passes until the time is up, --spp a number of them; give one");
-    if (!cl.strategiesDir.empty()) cl.opt.strategyMaxLength = cl.strategyLength;
-    return cl;
-}
-
-inline void setResolution(Camera& cam, int width, int height) {
-    cam.width = width;
-    cam.height = height;
-    cam.aspect = float(width) / height;
-    cam.imageArea = 4 * sqr(cam.tanHalfFov) * cam.aspect;
-}
-
-// "16.07 rays per sample (6.63 closest-hit, 9.44 shadow)": bdpt on cornell, the slides' "more
-// costly" counted (nee: 5.35).
+// What a sample costs in rays, the slides' "more costly" counted: the summary line's figure.
 inline std::string raysPerSample(const RenderResult& r) {
     double samples = double(r.passes) * r.image.width * r.image.height;
     char text[128];
@@ -3538,16 +3536,14 @@ inline std::string checkOutputs(const CommandLine& cl, const std::string& pfm) {
 //  - one light takes nearly all of the choice by power (a huge dim sky sphere starves a lamp);
 //  - a light whose emitting side faces a surface right in front of it, or nothing at all (a
 //    lamp under a ceiling with its u and v swapped: it lights a sliver of ceiling, and the room
-//    renders almost black, mean 0.00068, without a word before this check);
+//    renders almost black);
 //  - a quick preview sees no light at all (a lamp facing away, or a light in a closed box).
 // What a render will hold, in bytes, known before it starts: per pixel the pass sums and squares
 // (6 doubles), the pass, the image and its variance (3 Vec3), the PNG's bytes, the log's running
 // mean, two sums per strategy image and the image written; vcm's light subpaths and grid of a
-// pass, estimated at 2 KB a pixel (its summary line measured 0.7 KB on cornell and 1.4 KB on
-// sds-point, at 256x256 and 1024x1024; a 6 GB limit stopped it at 2048x2048 on cornell); mlt's
-// pass image and its chains' splats of one pass, estimated at 128 bytes a pixel (its peak memory
-// grew by 55 bytes a pixel more than bdpt's from 128x128 to 512x512 on cornell); its chains'
-// states do not grow with the image (about 1.2 KB a chain on cornell).
+// pass, bounded by 2 KB a pixel (its summary line reports what a run took); mlt's pass image and
+// its chains' splats of one pass, bounded by 128 bytes a pixel; its chains' states do not grow
+// with the image. Appendix A gives the measurements behind both bounds.
 inline double estimatedBytes(const Scene& scene, const RenderOptions& opt, bool logging) {
     int images = strategyImageCount(opt);
     double perPixel = 6 * sizeof(double) + 3 * sizeof(Vec3) + 3 + (logging ? 3 * sizeof(double) + sizeof(Vec3) : 0) +
@@ -3617,54 +3613,42 @@ inline void warnAboutScene(const Scene& scene, const RenderOptions& opt, std::os
                "facing away (a quad emits from its u x v side only), or shut in?\n";
 }
 
-inline int runCommandLine(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    CommandLine cl;
-    Scene scene;
-    try {
-        cl = parseCommandLine(args);
-        if (cl.help) { out << kUsage; return 0; }
-        if (!cl.failureLogs.empty()) return printFailureTable(cl.failureLogs, out, err);
-        if (!cl.pfmA.empty()) {
-            Image a, b;
-            const char* verb = cl.average ? "average" : cl.ratio ? "divide" : "compare";
-            for (auto [path, img] : {std::make_pair(&cl.pfmA, &a), std::make_pair(&cl.pfmB, &b)}) {
-                struct stat st;
-                const char* problem = stat(path->c_str(), &st) != 0 ? "does not exist"
-                                      : !readPFM(*path, *img)           ? "is not a PFM image (as bdpt writes)"
-                                                                         : nullptr;
-                if (problem) {
-                    err << "bdpt: cannot " << verb << ": " << *path << " " << problem << "\n";
-                    return 2;
-                }
-            }
-            if (a.width != b.width || a.height != b.height) {
-                err << "bdpt: cannot " << verb << ": " << cl.pfmA << " is " << a.width << "x" << a.height << ", " << cl.pfmB
-                    << " is " << b.width << "x" << b.height << "\n";
-                return 2;
-            }
-            if (cl.average) {
-                for (size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = (a.pixels[i] + b.pixels[i]) * 0.5f;
-                std::string pfm = replaceExtension(cl.out, ".pfm");
-                if (writePNG(a, cl.out, cl.opt.exposure) && writePFM(a, pfm)) {
-                    out << "wrote " << cl.out << " and " << pfm << "\n";
-                    return 0;
-                }
-                err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
-                return 1;
-            }
-            if (cl.ratio) return writeRatio(a, b, cl.out, out, err);
-            ErrorMetrics m = compareToReference(a, b);
-            out << "rmse " << m.rmse << " relmse " << m.relMse << " bias " << m.bias << " mean " << m.mean << "\n";
-            return 0;
+// --compare, --average and --ratio: two PFM images in, numbers or an image out. Returns the exit status.
+inline int runImageTool(const CommandLine& cl, std::ostream& out, std::ostream& err) {
+    Image a, b;
+    const char* verb = cl.average ? "average" : cl.ratio ? "divide" : "compare";
+    for (auto [path, img] : {std::make_pair(&cl.pfmA, &a), std::make_pair(&cl.pfmB, &b)}) {
+        struct stat st;
+        const char* problem = stat(path->c_str(), &st) != 0 ? "does not exist" : !readPFM(*path, *img) ? "is not a PFM image (as bdpt writes)" : nullptr;
+        if (problem) {
+            err << "bdpt: cannot " << verb << ": " << *path << " " << problem << "\n";
+            return 2;
         }
-        scene = loadScene(cl.scenePath);
-    } catch (const InputError& e) {
-        err << e.what() << "\n";
+    }
+    if (a.width != b.width || a.height != b.height) {
+        err << "bdpt: cannot " << verb << ": " << cl.pfmA << " is " << a.width << "x" << a.height << ", " << cl.pfmB << " is " << b.width
+            << "x" << b.height << "\n";
         return 2;
     }
-    if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
-    if (cl.opt.method == Method::VCM && cl.radius >= 0) cl.opt.mergeRadius = float(cl.radius);
+    if (cl.ratio) return writeRatio(a, b, cl.out, out, err);
+    if (!cl.average) {
+        ErrorMetrics m = compareToReference(a, b);
+        out << "rmse " << m.rmse << " relmse " << m.relMse << " bias " << m.bias << " mean " << m.mean << "\n";
+        return 0;
+    }
+    for (size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = (a.pixels[i] + b.pixels[i]) * 0.5f;
     std::string pfm = replaceExtension(cl.out, ".pfm");
+    if (writePNG(a, cl.out, cl.opt.exposure) && writePFM(a, pfm)) {
+        out << "wrote " << cl.out << " and " << pfm << "\n";
+        return 0;
+    }
+    err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
+    return 1;
+}
+
+// Before any work: every output writable, the memory there, the reference readable and of the
+// image's size. Returns the exit status if the render cannot go ahead, else 0.
+inline int checkBeforeRendering(const CommandLine& cl, const Scene& scene, const std::string& pfm, Image& ref, std::ostream& err) {
     std::string problem = checkOutputs(cl, pfm);
     if (!problem.empty()) {
         err << "bdpt: " << problem << " (nothing rendered)\n";
@@ -3672,72 +3656,119 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     }
     double needed = estimatedBytes(scene, cl.opt, !cl.logPath.empty()), limit = memoryLimitBytes();
     if (needed + 200e6 > limit) {  // 200 MB for the program, its threads' stacks and the scene
-        err << "bdpt: this render needs about " << std::setprecision(2) << std::fixed << needed / 1e9 << " GB for "
-            << scene.camera.width << "x" << scene.camera.height << " pixels, more than the " << limit / 1e9
+        err << "bdpt: this render needs about " << std::setprecision(2) << std::fixed << needed / 1e9 << " GB for " << scene.camera.width
+            << "x" << scene.camera.height << " pixels, more than the " << limit / 1e9
             << " GB this process may use (the machine's memory or ulimit -v): use a smaller --res (nothing rendered)\n";
         return 1;
     }
-    warnAboutScene(scene, cl.opt, err);
-    if (!cl.exposureGiven) cl.opt.exposure = scene.exposure;
-    scene.symmetricRefraction = cl.symmetricRefraction;
-    scene.adjointCorrection = !cl.noAdjointCorrection;
-    scene.fixedRayOffset = cl.fixedRayOffset;
-    scene.deltaDensityOne = cl.deltaDensityOne;
-    Image ref;
-    if (!cl.refPath.empty()) {
-        if (!readPFM(cl.refPath, ref)) { err << cl.refPath << ": cannot read the reference (a PFM written by bdpt)\n"; return 2; }
-        if (ref.width != scene.camera.width || ref.height != scene.camera.height) {
-            err << cl.refPath << ": the reference is " << ref.width << "x" << ref.height << ", the image " << scene.camera.width << "x"
-                << scene.camera.height << " (use --res)\n";
-            return 2;
-        }
+    if (cl.refPath.empty()) return 0;
+    if (!readPFM(cl.refPath, ref)) {
+        err << cl.refPath << ": cannot read the reference (a PFM written by bdpt)\n";
+        return 2;
     }
-    // Per-pass metrics: the running mean against the reference, with the time spent measuring
-    // taken out of the clock. The log is written as the passes finish, flushed after each (tail -f
-    // follows a run); --live rewrites the PNG from the running mean (whole, by rename).
+    if (ref.width != scene.camera.width || ref.height != scene.camera.height) {
+        err << cl.refPath << ": the reference is " << ref.width << "x" << ref.height << ", the image " << scene.camera.width << "x"
+            << scene.camera.height << " (use --res)\n";
+        return 2;
+    }
+    return 0;
+}
+
+// --log and --live, after every pass: the running mean against the reference, with the time spent
+// measuring taken out of the clock. The log is flushed after each pass (tail -f follows a run);
+// --live rewrites the PNG from the running mean (whole, by rename).
+struct PassLog {
+    const CommandLine& cl;
+    const Image& ref;
     std::ofstream log;
-    if (!cl.logPath.empty()) {
+    std::string sceneName;
+    std::vector<double> running;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), lastLive = start;
+    double measuring = 0;
+    PassLog(const CommandLine& c, const Scene& scene, const Image& reference)
+        : cl(c), ref(reference), running(3 * size_t(scene.camera.width) * scene.camera.height, 0.0) {
+        sceneName = cl.scenePath.substr(cl.scenePath.find_last_of('/') + 1);
+        sceneName = sceneName.substr(0, sceneName.find_last_of('.'));
+    }
+    bool open() {
         log.open(cl.logPath);
         log << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count,rmse_without_lamp\n";
-        if (!log.flush()) { err << "bdpt: cannot write " << cl.logPath << " (nothing rendered)\n"; return 1; }
+        return bool(log.flush());
     }
-    std::vector<double> running(3 * size_t(scene.camera.width) * scene.camera.height, 0.0);
-    auto start = std::chrono::steady_clock::now(), lastLive = start;
-    double measuring = 0;
-    std::string sceneName = cl.scenePath.substr(cl.scenePath.find_last_of('/') + 1);
-    sceneName = sceneName.substr(0, sceneName.find_last_of('.'));
-    if (!cl.logPath.empty() || cl.liveSeconds > 0) {
-        cl.opt.onPass = [&](int p, const std::vector<Vec3>& pass, long long nonFinite) {
-            double seconds = secondsSince(start) - measuring;
-            auto t0 = std::chrono::steady_clock::now();
-            Image mean(scene.camera.width, scene.camera.height);
-            for (size_t i = 0; i < pass.size(); ++i)
-                for (int c = 0; c < 3; ++c) mean.pixels[i][c] = float((running[3 * i + c] += pass[i][c]) / (p + 1));
-            if (cl.liveSeconds > 0 && secondsSince(lastLive) >= cl.liveSeconds) {
-                writePNG(mean, cl.out, cl.opt.exposure);  // a failure here shows again at the end
-                lastLive = std::chrono::steady_clock::now();
-            }
-            if (cl.logPath.empty()) {
-                measuring += secondsSince(t0);
-                return;
-            }
-            log << sceneName << "," << methodName(cl.opt.method) << "," << optionsLabel(cl.opt) << "," << p + 1 << "," << p + 1 << ","
-                << seconds << ",";
+    void add(int p, const std::vector<Vec3>& pass, long long nonFinite, int width, int height) {
+        double seconds = secondsSince(start) - measuring;
+        auto t0 = std::chrono::steady_clock::now();
+        Image mean(width, height);
+        for (size_t i = 0; i < pass.size(); ++i)
+            for (int c = 0; c < 3; ++c) mean.pixels[i][c] = float((running[3 * i + c] += pass[i][c]) / (p + 1));
+        if (cl.liveSeconds > 0 && secondsSince(lastLive) >= cl.liveSeconds) {
+            writePNG(mean, cl.out, cl.opt.exposure);  // a failure here shows again at the end
+            lastLive = std::chrono::steady_clock::now();
+        }
+        if (!cl.logPath.empty()) {
+            log << sceneName << "," << methodName(cl.opt.method) << "," << optionsLabel(cl.opt) << "," << p + 1 << "," << p + 1 << "," << seconds << ",";
             if (ref.width > 0) {
                 ErrorMetrics m = compareToReference(mean, ref);
-                log << m.rmse << "," << m.relMse << "," << m.mean << "," << m.bias << "," << m.firefly << "," << nonFinite << ","
-                    << m.rmseWithoutLamp << "\n";
+                log << m.rmse << "," << m.relMse << "," << m.mean << "," << m.bias << "," << m.firefly << "," << nonFinite << "," << m.rmseWithoutLamp << "\n";
             } else {
                 log << ",," << imageMean(mean) << ",,," << nonFinite << ",\n";
             }
             log.flush();
-            measuring += secondsSince(t0);
-        };
+        }
+        measuring += secondsSince(t0);
     }
+};
+
+// What a method adds to the summary line: vcm's radius and light vertices, the chains' b and
+// acceptance, what the clamp removed.
+inline void printMethodSummary(const CommandLine& cl, const Scene& scene, const RenderResult& r, std::ostream& out) {
+    char text[256];
+    if (cl.opt.method == Method::VCM) {
+        std::snprintf(text, sizeof text, "vcm: radius %g in pass 1, %g in pass %d; %.1f mergeable light vertices per pixel and pass; "
+                      "light subpaths and grid %.1f MB\n", mergeRadius(scene, cl.opt, 0), mergeRadius(scene, cl.opt, r.passes - 1), r.passes,
+                      double(r.mergeableVertices) / (double(r.passes) * r.image.width * r.image.height), r.lightVertexBytes / 1e6);
+        out << text;
+    }
+    if (isMetropolis(cl.opt.method)) {
+        std::snprintf(text, sizeof text, "%s: b = %.6g +- %.2g (bootstrap of %d samples); %d chains accepted %.1f%% of %lld mutations\n",
+                      methodName(cl.opt.method), r.mltB, r.mltBError, bootstrapSamples(cl.opt), cl.opt.chains,
+                      100.0 * double(r.mltAccepted) / double(std::max(1LL, r.mltProposed)), r.mltProposed);
+        out << text;
+    }
+    if (cl.opt.method == Method::IR && cl.opt.clamp > 0)
+        out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved() << "% of the energy gathered from VPLs\n";
+}
+
+inline int runCommandLine(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    CommandLine cl;
+    Scene scene;
+    try {
+        cl = parseCommandLine(args);
+        if (cl.help) { out << usage(); return 0; }
+        if (!cl.failureLogs.empty()) return printFailureTable(cl.failureLogs, out, err);
+        if (!cl.pfmA.empty()) return runImageTool(cl, out, err);
+        scene = loadScene(cl.scenePath);
+    } catch (const InputError& e) {
+        err << e.what() << "\n";
+        return 2;
+    }
+    if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
+    const std::string pfm = replaceExtension(cl.out, ".pfm");
+    Image ref;
+    if (int status = checkBeforeRendering(cl, scene, pfm, ref, err)) return status;
+    warnAboutScene(scene, cl.opt, err);
+    if (!cl.exposureGiven) cl.opt.exposure = scene.exposure;
+    scene.conventions = cl.conventions;
+    PassLog passLog(cl, scene, ref);
+    if (!cl.logPath.empty() && !passLog.open()) { err << "bdpt: cannot write " << cl.logPath << " (nothing rendered)\n"; return 1; }
+    if (!cl.logPath.empty() || cl.liveSeconds > 0)
+        cl.opt.onPass = [&](int p, const std::vector<Vec3>& pass, long long nonFinite) {
+            passLog.add(p, pass, nonFinite, scene.camera.width, scene.camera.height);
+        };
     RenderResult r = render(scene, cl.opt);
     if (!cl.logPath.empty()) {
-        log.close();
-        if (!log) { err << "bdpt: cannot write " << cl.logPath << "\n"; return 1; }
+        passLog.log.close();
+        if (!passLog.log) { err << "bdpt: cannot write " << cl.logPath << "\n"; return 1; }
     }
     if (!writePNG(r.image, cl.out, cl.opt.exposure) || !writePFM(r.image, pfm)) {
         err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
@@ -3747,8 +3778,8 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);  // a hundredth: the clock's noise is larger
     if (!cl.opt.quiet)
-        out << cl.scenePath << ": " << r.passes << " samples per pixel in " << seconds << " s, mean " << imageMean(r.image)
-            << ", " << r.nonFinite << " non-finite samples dropped, " << raysPerSample(r) << "; wrote " << cl.out << " and " << pfm << "\n";
+        out << cl.scenePath << ": " << r.passes << " samples per pixel in " << seconds << " s, mean " << imageMean(r.image) << ", "
+            << r.nonFinite << " non-finite samples dropped, " << raysPerSample(r) << "; wrote " << cl.out << " and " << pfm << "\n";
     if (!writeStrategyImages(r, cl.opt.strategyMaxLength, cl.strategiesDir, cl.opt.exposure, out)) {
         err << "bdpt: cannot write the strategy images into " << cl.strategiesDir << "/\n";
         return 1;
@@ -3757,22 +3788,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         err << "bdpt: interrupted: wrote the " << r.passes << " completed samples per pixel to " << cl.out << " and " << pfm << "\n";
         return kExitInterrupted;
     }
-    if (!cl.opt.quiet && cl.opt.method == Method::VCM) {
-        char text[256];
-        std::snprintf(text, sizeof text, "vcm: radius %g in pass 1, %g in pass %d; %.1f mergeable light vertices per pixel and pass; "
-                      "light subpaths and grid %.1f MB\n", mergeRadius(scene, cl.opt, 0), mergeRadius(scene, cl.opt, r.passes - 1), r.passes,
-                      double(r.mergeableVertices) / (double(r.passes) * r.image.width * r.image.height), r.lightVertexBytes / 1e6);
-        out << text;
-    }
-    if (!cl.opt.quiet && isMetropolis(cl.opt.method)) {
-        char text[256];
-        std::snprintf(text, sizeof text, "%s: b = %.6g +- %.2g (bootstrap of %d samples); %d chains accepted %.1f%% of %lld mutations\n",
-                      methodName(cl.opt.method), r.mltB, r.mltBError, bootstrapSamples(cl.opt), cl.opt.chains,
-                      100.0 * double(r.mltAccepted) / double(std::max(1LL, r.mltProposed)), r.mltProposed);
-        out << text;
-    }
-    if (!cl.opt.quiet && cl.opt.method == Method::IR && cl.opt.clamp > 0)
-        out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved << "% of the energy gathered from VPLs\n";
+    if (!cl.opt.quiet) printMethodSummary(cl, scene, r, out);
     return 0;
 }
 

@@ -26,7 +26,9 @@ inline TwoSegmentPath twoSegmentPath(const Scene& scene, int lamp, const Surface
     double camDist2 = dot(toX1, toX1);
     Vec3 dirCam = toX1 / std::sqrt(camDist2);
     double pCam = pdfCameraDirection(scene.camera, dirCam) * absDot(x1.ng, dirCam) / camDist2;
-    double pBsdf = pdfBsdf(scene, x1, -dirCam, t.w) * cos0 / t.dist2;
+    float pdfToLamp, pdfToCamera;  // x_1's BSDF densities: toward the lamp, having come from the camera, and back
+    evalBsdf(scene, x1, -dirCam, t.w, Transport::Radiance, pdfToLamp, pdfToCamera);
+    double pBsdf = pdfToLamp * cos0 / t.dist2;
     t.pLight = pdfLightPoint(scene, lamp);
     t.p[0] = pCam * albedoContinuation(scene, x1) * pBsdf;
     t.p[1] = pCam * t.pLight;

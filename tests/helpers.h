@@ -26,6 +26,23 @@ DOCTEST_REGISTER_REPORTER("notes", 1, doctest::NotesReporter);
 #include <fcntl.h>
 #include <signal.h>
 
+// A BSDF's value alone, f |cos wi| (evalBsdf without its densities), and the density with which
+// sampleBsdf picks wi given wo (0 for delta lobes).
+inline Vec3 evalBsdfCos(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode) {
+    float pdf, pdfReverse;
+    return evalBsdf(scene, sp, wo, wi, mode, pdf, pdfReverse);
+}
+inline float pdfBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi) {
+    float pdf, pdfReverse;
+    evalBsdf(scene, sp, wo, wi, Transport::Radiance, pdf, pdfReverse);
+    return pdf;
+}
+inline float standardNormal(Rng& rng) {
+    float a, b;
+    standardNormals(rng, a, b);
+    return a;
+}
+
 inline Scene sceneAt(const std::string& file, int width, int height) {
     Scene s = loadScene(file);
     setResolution(s.camera, width, height);

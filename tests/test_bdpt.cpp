@@ -28,8 +28,7 @@ static Vec3 unitTo(const PathVertex& from, const PathVertex& to) { return normal
 // The subpaths the generators would have made of x for strategy s: x_0..x_{s-1} from the light
 // and x_{n-1}..x_s from the pinhole, each vertex added by the walkers' own appendVertex (the
 // densities under test), so that misWeight sees what a sample of (s, n-s) would have stored.
-static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s, Heuristic h, std::vector<PathVertex>& y,
-                    std::vector<PathVertex>& z, double mergeEta = 0) {
+static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s, std::vector<PathVertex>& y, std::vector<PathVertex>& z) {
     const int n = int(x.size()), t = n - s;
     auto grow = [&](std::vector<PathVertex>& path, PathVertex v, Transport mode) {
         Vec3 d = path.back().sp.p - v.sp.p;
@@ -65,8 +64,6 @@ static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s,
     z0.pdfRev = 0;
     z.push_back(z0);
     for (int j = 1; j < t; ++j) grow(z, x[n - 1 - j], Transport::Radiance);
-    cacheMisSums(h, y, mergeEta);
-    cacheMisSums(h, z, mergeEta);
 }
 
 // The density with which one subpath samples x[from], then x[from + dir], ..., x[to], computed
@@ -160,7 +157,7 @@ static float mergeWeightInPath(const Scene& scene, Heuristic h, double mergeEta,
     vp.mergeEta = mergeEta;
     vp.radius = 1e-4f * (1 + maxComponent(absVec(y[i].sp.p)));
     vp.paths = {Subpath(y)};
-    vp.stored = {storedVertex(h, y, i, mergeEta, 0)};
+    vp.stored = {storedVertex(y, i, 0)};
     buildHashGrid(vp.grid, {y[i].sp.p}, vp.radius);
     RenderOptions opt;
     opt.heuristic = h;
@@ -192,8 +189,6 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
         Rng rng = makeRng(seed, uint64_t(i), 7);
         cameraSubpath(scene, opt, rng.uniform() * scene.camera.width, rng.uniform() * scene.camera.height, rng, camera);
         lightSubpath(scene, opt, rng, light);
-        cacheMisSums(h, camera, mergeEta);
-        cacheMisSums(h, light, mergeEta);
         for (int t = 1; t <= int(camera.size()); ++t)
             for (int s = 0; s <= int(light.size()); ++s) {
                 if (s + t < 3 || s + t - 2 > opt.maxDepth) continue;  // k >= 2: more than one strategy
@@ -205,7 +200,7 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
                 std::map<int, double> density, weight;
                 for (int s2 = 0; s2 < int(x.size()); ++s2) {
                     if (!able(scene, x, s2)) continue;
-                    rebuild(scene, x, s2, h, y, z, mergeEta);
+                    rebuild(scene, x, s2, y, z);
                     int t2 = int(x.size()) - s2;
                     Connection c2;  // what connectStrategy would have evaluated for (s2, t2)
                     if (s2 > 0) evalConnection(scene, y[s2 - 1], z[t2 - 1], c2);
@@ -221,15 +216,15 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
                 for (int i = 1; mergeEta > 0 && i + 1 < int(x.size()); ++i) {
                     if (specularAt(scene, x[i])) continue;
                     std::vector<PathVertex> yMerge, zMerge, unused;
-                    rebuild(scene, x, i + 1, h, yMerge, unused, mergeEta);  // the light subpath x_0..x_i
-                    rebuild(scene, x, i, h, unused, zMerge, mergeEta);      // the camera subpath x_{n-1}..x_i
+                    rebuild(scene, x, i + 1, yMerge, unused);  // the light subpath x_0..x_i
+                    rebuild(scene, x, i, unused, zMerge);      // the camera subpath x_{n-1}..x_i
                     int t2 = int(x.size()) - i;
                     const PathVertex& xi = zMerge[t2 - 1];
                     float pdf, pdfReverse;
                     if (isBlack(evalBsdf(scene, xi.sp, xi.wo, yMerge[i].wo, Transport::Radiance, pdf, pdfReverse))) continue;
-                    VcmPass::Stored record = storedVertex(h, yMerge, i, mergeEta, 0);
+                    VcmPass::Stored record = storedVertex(yMerge, i, 0);
                     float w = mergeWeightInPath(scene, h, mergeEta, yMerge, i, zMerge);
-                    float wWalked = mergeWeight(scene, yMerge, record, zMerge, t2, h, mergeEta, pdf, pdfReverse, true);
+                    float wWalked = mergeWeight(scene, yMerge, record, zMerge, t2, h, mergeEta, pdf, pdfReverse);
                     if (w < 0) w = wWalked, ++wc.mergesUnderflowed;  // a glossy lobe's f of 1e-30: nothing to splat
                     wc.worstMergeWalk = std::max(wc.worstMergeWalk, double(std::fabs(w - wWalked)));
                     density[1000 + i] = subpathDensity(scene, x, 0, i, roulette) * subpathDensity(scene, x, int(x.size()) - 1, i, roulette) * mergeEta;
@@ -250,6 +245,27 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
 
 static Scene smallScene(const std::string& file) { return sceneAt(file, 16, 16); }
 
+// fn(light, s, camera, t, connection, C) for every strategy of at least minVertices vertices that
+// connects, over `samples` random pairs of subpaths (random stream `stream` of `seed`).
+template <class Fn>
+static void forEachConnectedStrategy(const Scene& scene, const RenderOptions& opt, int samples, uint64_t seed, uint64_t stream, int minVertices,
+                                     Fn fn) {
+    std::vector<PathVertex> camera, light;
+    for (int i = 0; i < samples; ++i) {
+        Rng rng = makeRng(seed, uint64_t(i), stream);
+        cameraSubpath(scene, opt, rng.uniform() * scene.camera.width, rng.uniform() * scene.camera.height, rng, camera);
+        lightSubpath(scene, opt, rng, light);
+        for (int t = 1; t <= int(camera.size()); ++t)
+            for (int s = 0; s <= int(light.size()); ++s) {
+                if (s + t < minVertices || s + t - 2 > opt.maxDepth) continue;
+                int pixel = 0;
+                Connection connection;
+                Vec3 c = connectStrategy(scene, light, s, camera, t, connection, pixel);
+                if (!isBlack(c)) fn(light, s, camera, t, connection, c);
+            }
+    }
+}
+
 // The slides' "Implementation: Example: Maximums Heuristics" as a reference implementation: every
 // strategy's sample SP adds SP.f / p with p = max over estimators of Probability(SP, estimator),
 // computed from scratch. Literally, every strategy adds it; corrected (lecture notes, page 10),
@@ -258,32 +274,22 @@ static Scene smallScene(const std::string& file) { return sceneAt(file, 16, 16);
 static double slideMaxEstimate(const Scene& scene, int samples, bool literal) {
     RenderOptions opt = quietOptions(Method::BDPT, 1, 31);
     opt.maxDepth = 12;
-    std::vector<PathVertex> camera, light, y, z;
+    std::vector<PathVertex> y, z;
     double total = 0;
-    for (int i = 0; i < samples; ++i) {
-        Rng rng = makeRng(31, uint64_t(i), 7);
-        cameraSubpath(scene, opt, rng.uniform() * scene.camera.width, rng.uniform() * scene.camera.height, rng, camera);
-        lightSubpath(scene, opt, rng, light);
-        for (int t = 1; t <= int(camera.size()); ++t)
-            for (int s = 0; s <= int(light.size()); ++s) {
-                if (s + t < 2 || s + t - 2 > opt.maxDepth) continue;
-                int pixel = 0;
-                Connection connection;
-                Vec3 c = connectStrategy(scene, light, s, camera, t, connection, pixel);  // SP.f / p_s
-                if (isBlack(c)) continue;
-                std::vector<PathVertex> x = joinPath(light, s, camera, t);
-                std::map<int, double> density;
-                for (int s2 = 0; s2 < int(x.size()); ++s2) {
-                    if (!able(scene, x, s2)) continue;
-                    rebuild(scene, x, s2, Heuristic::Max, y, z);
-                    density[s2] = pathDensity(scene, x, s2, opt.roulette);  // Probability(SP, estimator s2)
-                }
-                double pMax = 0;
-                for (auto [s2, p] : density) pMax = std::max(pMax, p);
-                double share = literal ? density.at(s) / pMax : definitionWeight(Heuristic::Max, density, s);
-                total += (c.x + c.y + c.z) / 3 * share;  // SP.f / p_max = (SP.f / p_s) (p_s / p_max)
-            }
-    }
+    forEachConnectedStrategy(scene, opt, samples, 31, 7, 2, [&](const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
+                                                                 int t, const Connection&, Vec3 c) {  // c = SP.f / p_s
+        std::vector<PathVertex> x = joinPath(light, s, camera, t);
+        std::map<int, double> density;
+        for (int s2 = 0; s2 < int(x.size()); ++s2) {
+            if (!able(scene, x, s2)) continue;
+            rebuild(scene, x, s2, y, z);
+            density[s2] = pathDensity(scene, x, s2, opt.roulette);  // Probability(SP, estimator s2)
+        }
+        double pMax = 0;
+        for (auto [s2, p] : density) pMax = std::max(pMax, p);
+        double share = literal ? density.at(s) / pMax : definitionWeight(Heuristic::Max, density, s);
+        total += (c.x + c.y + c.z) / 3 * share;  // SP.f / p_max = (SP.f / p_s) (p_s / p_max)
+    });
     return total / samples;
 }
 
@@ -315,6 +321,95 @@ TEST_CASE("MIS: the weights of all strategies able to make a path sum to 1 and f
                 CHECK(wc.worstDefinition < 1e-3);
             }
         }
+}
+
+// -- SmallVCM's recursion (notes, page 10's exercise) --------------------------------------
+// Beyond the two vertices next to the connection the walk is the same for every connection to a
+// vertex, so each subpath can sum it once per vertex (Georgiev's report, eq. 34-36, in pbrt's
+// densities):  S_i = ratio_i^e ([strategy i able] + [merge at i] (mergeEta pdfFwd_i)^e + S_{i-1}),
+// ratio_i = pdfRev_i / pdfFwd_i, e = 1 balance, 2 power, 0 uniform, and a connection's weight
+// needs the junction's four densities and S of the vertex beyond: O(1) instead of O(k). Written
+// here from the formula, apart from misWalk, it must give the walk's weights. The broken variant
+// counts a strategy at every vertex, delta or not (the fireflies of Mitsuba #132).
+static double misPowerOf(Heuristic h, double r) { return h == Heuristic::Power ? r * r : h == Heuristic::Uniform ? 1 : r; }
+
+static std::vector<double> recursiveSums(Heuristic h, const std::vector<PathVertex>& path, double mergeEta, bool countDeltas) {
+    std::vector<double> S(path.size());
+    for (size_t i = 0; i < path.size(); ++i) {
+        const PathVertex& v = path[i];
+        bool able = i == 0 ? v.type == PathVertex::Light && !v.deltaPosition : countDeltas || (!v.delta && !path[i - 1].delta);
+        bool mergeable = mergeEta > 0 && v.type == PathVertex::Surface && !v.delta;
+        double terms = able + (mergeable ? misPowerOf(h, mergeEta * v.pdfFwd) : 0) + (i > 0 ? S[i - 1] : 0);
+        double ratio = misPowerOf(h, v.pdfFwd > 0 ? v.pdfRev / v.pdfFwd : 0);
+        S[i] = ratio == 0 || terms == 0 ? 0 : ratio * terms;
+    }
+    return S;
+}
+
+// w_{s,t} from the sums: the junction's vertices (the last two of each subpath) walked, the rest
+// read from S.
+static double recursiveWeight(const Scene& scene, const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera, int t,
+                              Heuristic h, const Connection& c, double mergeEta, bool countDeltas) {
+    std::vector<double> SL = recursiveSums(h, light, mergeEta, countDeltas), SC = recursiveSums(h, camera, mergeEta, countDeltas);
+    Junction j = connectionJunction(scene, light, s, camera, t, c);
+    double sum = 1;
+    auto side = [&](const std::vector<PathVertex>& v, int n, const std::vector<double>& S, double endRev, double beforeRev, bool camSide) {
+        double r = 1;
+        for (int i = n - 1; i >= 0 && i >= n - 2; --i) {
+            if (camSide && i == 0) return;  // the pinhole is never sampled by a light subpath
+            r *= (i == n - 1 ? endRev : beforeRev) / v[i].pdfFwd;
+            bool deltaHere = i != n - 1 && v[i].delta, deltaBefore = i > 0 ? (i - 1 != n - 1 && v[i - 1].delta) : v[0].deltaPosition;
+            if (camSide) deltaBefore = i - 1 != n - 1 && v[i - 1].delta;
+            if (countDeltas || (!deltaHere && !deltaBefore)) sum += misPowerOf(h, r);
+            bool mergeable = mergeEta > 0 && !deltaHere && (camSide ? !(s == 0 && i == n - 1) : i > 0);
+            if (mergeable) sum += misPowerOf(h, r * mergeEta * v[i].pdfFwd);
+        }
+        int beyond = n - 3;
+        if (beyond >= (camSide ? 1 : 0)) sum += misPowerOf(h, r) * S[beyond];
+    };
+    side(camera, t, SC, j.ptRev, j.ptMinusRev, true);
+    side(light, s, SL, j.qsRev, j.qsMinusRev, false);
+    return 1 / sum;
+}
+
+static double worstRecursionError(const Scene& scene, Heuristic h, double mergeEta, bool countDeltas, int* compared) {
+    RenderOptions opt = quietOptions(Method::BDPT, 1, 5);
+    opt.maxDepth = 8;
+    double worst = 0;
+    forEachConnectedStrategy(scene, opt, 300, 5, 9, 3, [&](const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
+                                                           int t, const Connection& c, Vec3) {
+        double walk = misWeight(scene, light, s, camera, t, h, c, mergeEta);
+        double recursive = recursiveWeight(scene, light, s, camera, t, h, c, mergeEta, countDeltas);
+        worst = std::max(worst, std::fabs(walk - recursive) / std::max(1e-3, walk));
+        ++*compared;
+    });
+    return worst;
+}
+
+TEST_CASE("SmallVCM's recursion (page 10's exercise) gives the walk's weights on every scene; counting deltas does not") {
+    for (const char* file : {"scenes/cornell.scene", "scenes/cornell-glass.scene", "scenes/cornell-point.scene", "scenes/glass-box.scene",
+                             "scenes/indirect.scene", "scenes/refraction.scene", "scenes/sds.scene", "scenes/shading-normals.scene",
+                             "scenes/door.scene", "scenes/energy-generator.scene", "scenes/furnace.scene"}) {
+        Scene scene = smallScene(file);
+        Scene full = loadScene(file);
+        double eta = kPi * sqr(double(defaultMergeRadius(full))) * full.camera.width * full.camera.height;
+        std::string name = file;
+        for (Heuristic h : {Heuristic::Balance, Heuristic::Power, Heuristic::Uniform})
+            for (double mergeEta : {0.0, eta}) {
+                CAPTURE(name);
+                CAPTURE(int(h));
+                CAPTURE(mergeEta);
+                int compared = 0;
+                CHECK(worstRecursionError(scene, h, mergeEta, false, &compared) < 1e-4);
+                CHECK(compared > 30);  // sds and door: few random subpaths connect
+            }
+    }
+    int compared = 0;
+    for (const char* file : {"scenes/cornell-glass.scene", "scenes/glass-box.scene"}) {  // mirrors and glass: deltas on the paths
+        double error = worstRecursionError(smallScene(file), Heuristic::Balance, 0, true, &compared);
+        MESSAGE(std::string(file) << ": counting deltas moves a weight by up to " << 100 * error << "%");
+        CHECK(error > 0.1);
+    }
 }
 
 // -- Specular chains: the weights against the true densities -------------------------------
@@ -437,7 +532,7 @@ static std::vector<PathVertex> chainPath(const Scene& scene, const std::vector<D
         PathVertex v;
         int shape = shapeAt(scene, p.f());
         REQUIRE(shape >= 0);
-        v.sp = makeSurfacePoint(scene.shapes[shape], shape, p.f());
+        v.sp = makeSurfacePoint(scene.shapes[shape], shape, p.f(), false);
         v.light = scene.shapes[shape].light;
         v.continuation = albedoContinuation(scene, v.sp);
         x.push_back(v);
@@ -467,10 +562,10 @@ static void checkChainWeights(const Scene& scene, const std::vector<D3>& points,
         for (int s : {0, n - 1}) {
             CAPTURE(int(h));
             CAPTURE(s);
-            rebuild(scene, x, s, h, y, z);
+            rebuild(scene, x, s, y, z);
             Connection c;
             if (s > 0) evalConnection(scene, y[s - 1], z[0], c);
-            CHECK(misWeight(scene, y, s, z, n - s, h, c) == doctest::Approx(definitionWeight(h, density, s)).epsilon(1e-4));
+            CHECK(misWeight(scene, y, s, z, n - s, h, c, 0) == doctest::Approx(definitionWeight(h, density, s)).epsilon(1e-4));
         }
 }
 
@@ -852,7 +947,7 @@ TEST_CASE("a caustic seen directly: bdpt's error there is no worse than light tr
     auto blockError = [&](Method m, bool deltaDensityOne) {
         std::vector<std::vector<double>> values(block.size());  // [pixel][seed]
         Scene variant = scene;
-        variant.deltaDensityOne = deltaDensityOne;
+        variant.conventions.deltaDensityOne = deltaDensityOne;
         for (int k = 0; k < seeds; ++k) {
             RenderResult r = render(variant, quietOptions(m, 8, 500 + k));
             for (size_t p = 0; p < block.size(); ++p) values[p].push_back(average(r.image.at(block[p].first, block[p].second)));
@@ -878,7 +973,7 @@ TEST_CASE("a caustic seen directly: bdpt's error there is no worse than light tr
     // Who carries the caustic: the MIS-weighted images of s = 0 and t = 1 for k = 4 (L S S D E).
     for (bool deltaDensityOne : {false, true}) {
         Scene variant = scene;
-        variant.deltaDensityOne = deltaDensityOne;
+        variant.conventions.deltaDensityOne = deltaDensityOne;
         RenderOptions o = quietOptions(Method::BDPT, 16, 510);
         o.strategyMaxLength = 4;
         RenderResult r = render(variant, o);

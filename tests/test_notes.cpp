@@ -251,7 +251,7 @@ TEST_CASE("notes, pages 7 and 10: p_{k,s+1}/p_{k,s} = pdfRev/pdfFwd of the verte
             Connection c;
             int pixel = 0;
             if (isBlack(connectStrategy(scene, light, 1, camera, 2, c, pixel))) continue;
-            double w1 = misWeight(scene, light, 1, camera, 2, h, c);
+            double w1 = misWeight(scene, light, 1, camera, 2, h, c, 0);
             worst = std::max(worst, std::fabs(w1 - pw(p[1]) / sum));
             std::vector<PathVertex> lightPath = {light[0], camera[1]}, eye = {camera[0]};  // s = 2, t = 1
             lightPath[1].type = PathVertex::Surface;
@@ -263,7 +263,7 @@ TEST_CASE("notes, pages 7 and 10: p_{k,s+1}/p_{k,s} = pdfRev/pdfFwd of the verte
             lightPath[0].pdfRev = 0;
             Connection c2;
             if (isBlack(connectStrategy(scene, lightPath, 2, eye, 1, c2, pixel))) continue;
-            double w2 = misWeight(scene, lightPath, 2, eye, 1, h, c2);
+            double w2 = misWeight(scene, lightPath, 2, eye, 1, h, c2, 0);
             worst = std::max(worst, std::fabs(w2 - pw(p[2]) / sum));
             ++checked;
         }

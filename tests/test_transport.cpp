@@ -80,7 +80,7 @@ TEST_CASE("refraction: radiance scales by (eta_o/eta_i)^2, importance does not; 
 TEST_CASE("a camera inside a glass sphere in a uniform room sees eta^2 Le = 2.25; symmetric refraction sees 1") {
     Scene scene = sceneAt("tests/glass-camera.scene", 8, 8);
     CHECK(imageMean(render(scene, quietOptions(Method::PT, 256)).image) == doctest::Approx(2.25).epsilon(0.01));
-    scene.symmetricRefraction = true;
+    scene.conventions.symmetricRefraction = true;
     CHECK(imageMean(render(scene, quietOptions(Method::PT, 256)).image) == doctest::Approx(1.0).epsilon(0.01));
 }
 
@@ -106,7 +106,7 @@ TEST_CASE("shading normals: the adjoint BSDF's albedo exceeds 1 at grazing angle
         Vec3 wo(std::sin(theta), 0, std::cos(theta));
         CHECK(adjointAlbedo(scene, plain, wo, rng) <= 0.8 * 1.01);
     }
-    scene.adjointCorrection = false;  // the uncorrected BSDF conserves energy but breaks reciprocity
+    scene.conventions.noAdjointCorrection = true;  // the uncorrected BSDF conserves energy but breaks reciprocity
     CHECK(adjointAlbedo(scene, tilted, grazing, rng) < 0.81);
 }
 
@@ -137,7 +137,7 @@ TEST_CASE("energy generator: a floor with a constant tilted shading normal refle
     plain.shapes[0].shading = Shape::ShadingNormal::Geometric;
     CHECK(floorPowerRatio(plain, 200000) == doctest::Approx(0.8).epsilon(1e-4));
     Scene uncorrected = tilted;  // the shading BSDF unadjoined keeps energy, loses consistency
-    uncorrected.adjointCorrection = false;
+    uncorrected.conventions.noAdjointCorrection = true;
     CHECK(floorPowerRatio(uncorrected, 200000) <= 0.8 + 1e-4);
     // Consistency, not conservation: with the adjoint lt agrees with nee on this floor's image.
     RegionEstimate nee = renderRegions(tilted, quietOptions(Method::NEE, 256, 44), 2);
@@ -172,7 +172,7 @@ TEST_CASE("lt equals nee on cornell, region by region") {
 
 // The pool: compare the floor, the part of the image both methods can render.
 static RegionEstimate poolFloor(Scene scene, Method m, int spp, uint64_t seed, bool symmetric) {
-    scene.symmetricRefraction = symmetric;
+    scene.conventions.symmetricRefraction = symmetric;
     RegionEstimate all = renderRegions(scene, quietOptions(m, spp, seed), 4);
     RegionEstimate floor;  // regions 12..15: the bottom row of a 4x4 grid
     for (int r = 12; r < 16; ++r) {
@@ -201,7 +201,7 @@ TEST_CASE("shading normals: lt agrees with nee with the adjoint correction, not 
     RegionEstimate nee = renderRegions(scene, quietOptions(Method::NEE, 512, 41), 1);
     RegionEstimate lt = renderRegions(scene, quietOptions(Method::LT, 1024, 42), 1);
     CHECK(maxZ(nee, lt) < 4.5);
-    scene.adjointCorrection = false;
+    scene.conventions.noAdjointCorrection = true;
     RegionEstimate uncorrected = renderRegions(scene, quietOptions(Method::LT, 1024, 43), 1);
     CHECK(maxZ(nee, uncorrected) > 6);
 }
@@ -224,7 +224,7 @@ TEST_CASE("ir: unclamped converges to nee; clamped loses energy, and more passes
     double bias1024 = (nee.mean.back() - irc.mean.back()) / nee.mean.back();
     CHECK(bias1024 > 0.015);  // of the whole image, whose visible lamp the clamp does not touch
     CHECK((nee.mean.back() - irc.mean.back()) / std::hypot(nee.stdError.back(), irc.stdError.back()) > 5);
-    CHECK(clamped.clampRemoved > 0.05);
+    CHECK(clamped.clampRemoved() > 0.05);
     o.spp = 128;
     o.seed = 53;
     RegionEstimate irc128 = renderRegions(scene, o, 2);
@@ -241,9 +241,9 @@ TEST_CASE("shading normals: ir and bdpt agree with nee with the adjoint correcti
     struct Run { Method m; int spp; };
     for (Run run : {Run{Method::LT, 1024}, Run{Method::IR, 1024}, Run{Method::BDPT, 256}}) {
         CAPTURE(int(run.m));
-        scene.adjointCorrection = true;
+        scene.conventions.noAdjointCorrection = false;
         double z = maxZ(nee, renderRegions(scene, quietOptions(run.m, run.spp, 45), 4));
-        scene.adjointCorrection = false;
+        scene.conventions.noAdjointCorrection = true;
         double zWithout = maxZ(nee, renderRegions(scene, quietOptions(run.m, run.spp, 46), 4));
         MESSAGE(std::string(methodName(run.m)) << ": z " << z << ", without the adjoint " << zWithout);
         CHECK(z < 4.5);
