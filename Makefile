@@ -4,8 +4,9 @@ MAKEFLAGS += --jobs=$(shell nproc 2>/dev/null || echo 2)  # test programs build 
 CXX      ?= g++
 CXXFLAGS ?= -O2 -g -std=c++17 -Wall -Wextra -pthread
 LDLIBS   ?= -lstb -pthread
-# Without Debian's libstb-dev: make STB_DIR=FOLDER, where FOLDER holds stb_image_write.h (the one
-# public-domain header of github.com/nothings/stb); it is then compiled into each program.
+# Without Debian's libstb-dev: make STB_DIR=FOLDER, where FOLDER holds stb_image_write.h (and, for
+# make test, stb_image.h: public-domain headers of github.com/nothings/stb); they are then
+# compiled into each program.
 ifdef STB_DIR
 CXXFLAGS += -isystem $(STB_DIR) -DBDPT_STB_HEADER
 LDLIBS := $(filter-out -lstb,$(LDLIBS))

@@ -1201,16 +1201,18 @@ inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& 
 // pinhole (t = 1) alone, instant radiosity the connection of one camera vertex to stored light
 // vertices, bdpt every connection.
 struct PathVertex {
-    enum Type { Camera, Light, Surface } type = Surface;
+    // What the MIS walk reads of every vertex comes first: one cache line for a walk along a
+    // light subpath that lies elsewhere in memory (vcm's merges).
+    double pdfFwd = 0, pdfRev = 0;  // area densities for bdpt's MIS (see its banner below)
+    bool delta = false;             // a delta BSDF was sampled here
+    bool deltaPosition = false;     // the pinhole, a point light
+    enum Type : unsigned char { Camera, Light, Surface } type = Surface;
+    float continuation = 1;         // Roulette::Albedo: probability that a walk goes on from here
     SurfacePoint sp;        // p and ng for every type; sp.shape < 0 for the pinhole and point lights
     Vec3 wo;                // surface: unit vector toward the previous vertex of its own subpath
     float prevDist2 = 0;    // squared distance to that vertex
     Vec3 beta;              // subpath throughput up to this vertex (light: Le/p_A or I/P(light))
-    double pdfFwd = 0, pdfRev = 0; // area densities for bdpt's MIS (see its banner below)
-    bool delta = false;          // a delta BSDF was sampled here
-    bool deltaPosition = false;  // the pinhole, a point light
-    int light = -1;              // the light y_0 was sampled on
-    float continuation = 1;      // Roulette::Albedo: probability that a walk goes on from here
+    int light = -1;         // the light y_0 was sampled on
 };
 
 // Roulette::Albedo's continuation probability at a surface: its material's largest albedo
@@ -1971,12 +1973,14 @@ inline Vec3 mergeCameraVertices(const Scene& scene, const RenderOptions& opt, co
             const VcmPass::Stored& y = vp.stored[n];
             int k = int(y.index) + t - 1;  // path length: index + 1 light vertices, t camera, one shared
             if (k - 1 > opt.maxDepth) return;
+            const Subpath& light = vp.paths[y.path];  // the weight walks it: asked for now, it arrives during evalBsdf
+            for (uint32_t i = 0; i < y.index; ++i) __builtin_prefetch(&light[int(i)]);
             float pdf, pdfReverse;
             Vec3 f = evalBsdf(scene, x.sp, x.wo, y.wo, Transport::Radiance, pdf, pdfReverse);
             float cosLight = absDot(y.wo, x.sp.ng);  // the light subpath's flux arrived through ng
             if (isBlack(f) || cosLight == 0) return;
             Vec3 c = x.beta * f * y.beta / (cosLight * float(vp.mergeEta));
-            float w = mergeWeight(scene, vp.paths[y.path], y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
+            float w = mergeWeight(scene, light, y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
             L += c * w;
             if (opt.strategyMaxLength > 0 && k <= opt.strategyMaxLength) {
                 int image = mergeImageIndex(k, opt.strategyMaxLength);

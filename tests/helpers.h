@@ -2,6 +2,12 @@
 #pragma once
 #define BDPT_NO_MAIN
 #include "bdpt.cpp"
+#ifdef BDPT_STB_HEADER  // make STB_DIR=FOLDER: the tests need stb_image.h there too
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb_image.h>
+#else
+#include <stb/stb_image.h>  // reading back what the renderer wrote (libstb-dev holds its code too)
+#endif
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 

@@ -304,6 +304,14 @@ TEST_CASE("MIS: the weights of all strategies able to make a path sum to 1 and f
                                {"cornell-glass (specular)", smallScene("scenes/cornell-glass.scene")},
                                {"refraction (one interface: camera and floor under water)", smallScene("scenes/refraction.scene"), 1000},
                                {"cornell-point (point light)", smallScene("scenes/cornell-point.scene")},
+                               // A point light in a box of 1 m: densities of order one, where a point light counted as
+                               // a strategy (s = 0 hitting it) takes visible weight; at cornell-point's millimetres it hides.
+                               {"point light in metres", parseScene("camera 0.5 0.5 -1.2  0.5 0.5 0.5  0 1 0  50  16 16\n"
+                                                                    "material white diffuse 0.7 0.7 0.7\nmaterial red diffuse 0.6 0.1 0.1\n"
+                                                                    "quad 0 0 0  0 0 1  1 0 0  white\nquad 0 1 0  1 0 0  0 0 1  white\n"
+                                                                    "quad 0 0 1  1 0 0  0 1 0  white\nquad 0 0 0  0 1 0  0 0 1  red\n"
+                                                                    "quad 1 0 0  0 0 1  0 1 0  white\npointlight 0.5 0.9 0.5  1 1 1\n",
+                                                                    "point-metres")},
                                {"shading-normals (bumps)", smallScene("scenes/shading-normals.scene")}};
     for (Heuristic h : {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform})
         for (Case& c : cases) {

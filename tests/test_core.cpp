@@ -91,15 +91,17 @@ TEST_CASE("furnace: L = Le / (1 - a) = 2 within 1% for every method; truncated a
     Scene scene = sceneAt("scenes/furnace.scene", 32, 32);
     struct Run { Method m; bool mis; };
     for (Run run : {Run{Method::PT, false}, Run{Method::NEE, false}, Run{Method::NEE, true}, Run{Method::LT, false},
-                    Run{Method::IR, false}, Run{Method::BDPT, false}, Run{Method::VCM, false}}) {
+                    Run{Method::IR, false}, Run{Method::BDPT, false}, Run{Method::VCM, false}, Run{Method::MLT, false},
+                    Run{Method::MMLT, false}}) {
         RenderOptions o = quietOptions(run.m, 64);
         o.mis = run.mis;  // nee --mis: a light density without the light's cosine gave 2.19
+        o.bootstrap = run.m == Method::MMLT ? 200000 : 20000;  // mlt's image mean is its b: the bootstrap's and the large steps'
         RenderResult r = render(scene, o);
         CAPTURE(int(run.m));
         CAPTURE(run.mis);
         CHECK(imageMean(r.image) == doctest::Approx(2.0).epsilon(0.01));
         CHECK(r.nonFinite == 0);
-        for (int depth : {0, 1, 2}) {  // Le (1 + a + ... + a^D): 1, 1.5, 1.75; a path-length limit off by one fails
+        for (int depth : {0, 1, 2, 3}) {  // Le (1 + a + ... + a^D): 1, 1.5, 1.75, 1.875; a length limit off by one fails
             CAPTURE(depth);
             o.maxDepth = depth;
             CHECK(imageMean(render(scene, o).image) == doctest::Approx(2 - std::pow(0.5, depth)).epsilon(0.01));
@@ -326,4 +328,29 @@ TEST_CASE("PFM bytes: header, little-endian floats, rows from the bottom up (wri
         for (int b = 0; b < 4; ++b) expected += char((u >> (8 * b)) & 0xff);  // little-endian by construction
     }
     CHECK(bytes == expected);
+}
+
+// The PNG's bytes follow the sRGB curve (IEC 61966-2-1), written here from the standard: linear
+// below 0.0031308, a 2.4 power above. A plain gamma 2.2 passes the furnace's grey window but
+// lifts dark values most: 0.001 becomes 11 instead of 3. Read back from the file, so the whole
+// path (exposure, rounding, the writer) is checked.
+TEST_CASE("the PNG's transfer curve is sRGB's, not a plain gamma, from the value to the file's bytes") {
+    auto srgb = [](double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055; };
+    const std::vector<double> values = {0, 0.0002, 0.001, 0.0025, 0.004, 0.01, 0.05, 0.18, 0.5, 0.8, 1, 3};
+    Image img(int(values.size()), 1);
+    for (size_t i = 0; i < values.size(); ++i) img.pixels[i] = Vec3(float(values[i]) * 0.5f);  // exposure +1 stop below
+    REQUIRE(writePNG(img, "build/tmp_srgb.png", 1.0f));
+    int w = 0, h = 0, channels = 0;
+    unsigned char* bytes = stbi_load("build/tmp_srgb.png", &w, &h, &channels, 3);
+    REQUIRE(bytes);
+    CHECK(w == int(values.size()));
+    for (size_t i = 0; i < values.size(); ++i) {
+        CAPTURE(values[i]);
+        int expected = int(std::lround(std::min(1.0, srgb(values[i])) * 255));
+        for (int c = 0; c < 3; ++c) CHECK(int(bytes[3 * i + c]) == expected);
+    }
+    CHECK(int(bytes[3 * 2]) == 3);                                          // 0.001: 3, not gamma 2.2's 11
+    CHECK(std::lround(std::pow(0.001, 1 / 2.2) * 255) == 11);
+    stbi_image_free(bytes);
+    std::remove("build/tmp_srgb.png");
 }
