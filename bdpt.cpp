@@ -1200,12 +1200,15 @@ inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& 
 // included, section 4) and 1/d^2; V is a shadow ray. Light tracing is the connection to the
 // pinhole (t = 1) alone, instant radiosity the connection of one camera vertex to stored light
 // vertices, bdpt every connection.
-struct PathVertex {
-    // What the MIS walk reads of every vertex comes first: one cache line for a walk along a
-    // light subpath that lies elsewhere in memory (vcm's merges).
-    double pdfFwd = 0, pdfRev = 0;  // area densities for bdpt's MIS (see its banner below)
+// What bdpt's MIS walk reads of a vertex (its banner below). vcm's merges walk light subpaths
+// that lie elsewhere in memory, and read a compact copy of just this.
+struct MisVertex {
+    double pdfFwd = 0, pdfRev = 0;  // area densities of sampling it from its own side and from the other
     bool delta = false;             // a delta BSDF was sampled here
     bool deltaPosition = false;     // the pinhole, a point light
+};
+
+struct PathVertex : MisVertex {
     enum Type : unsigned char { Camera, Light, Surface } type = Surface;
     float continuation = 1;         // Roulette::Albedo: probability that a walk goes on from here
     SurfacePoint sp;        // p and ng for every type; sp.shape < 0 for the pinhole and point lights
@@ -1585,24 +1588,23 @@ inline Junction connectionJunction(const Scene& scene, Subpath light, int s, Sub
     return j;
 }
 
-// The strategies able to make one path, each added as p_i / p_ref (p_ref: the density of the
-// strategy being weighted), and that strategy's weight w = misPower(1) / sum_i misPower(p_i/p_ref),
-// itself included; for the max heuristic 1 / #ties if no p_i is larger. Two strategies of equal
+// The strategies able to make one path, each added as r_i = p_i / p_ref (p_ref: the density of
+// the strategy being weighted), and that strategy's weight w = 1 / sum_i misPower(r_i), itself
+// included (r = 1); for the max heuristic 1 / #ties if no r_i is larger. Two strategies of equal
 // density (common in symmetric scenes) computed in different orders can each see the other as
 // larger by a rounding error: within 1e-4 they count as equal and share the path.
 struct MisSum {
     Heuristic heuristic;
-    double reference;
     double sum = 0;
     int larger = 0, equal = 0;
-    void add(double p) {
+    void add(double r) {
         constexpr double kTie = 1e-4;
         if (heuristic != Heuristic::Max) {
-            sum += misPower(heuristic, p / reference);
+            sum += misPower(heuristic, r);
             return;
         }
-        larger += p > reference * (1 + kTie);
-        equal += std::fabs(p - reference) <= reference * kTie;
+        larger += r > 1 + kTie;
+        equal += std::fabs(r - 1) <= kTie;
     }
     float weight() const {
         if (heuristic == Heuristic::Max) return larger || equal == 0 ? 0 : 1.0f / equal;
@@ -1611,24 +1613,27 @@ struct MisSum {
 };
 
 // The walk: adds to m every other strategy able to make the path light[0..s-1] + camera[t-1..0]
-// met at `j`, relative to p_{s,t}. The strategy that moves vertex x to the other side multiplies
+// met at `j`, relative to p_ref = p_{s,t} / r0 (r0 = 1 weighs (s,t) itself; a merge passes its
+// own density relative to p_{s,t}). The strategy that moves vertex x to the other side multiplies
 // the density by pdfRev(x)/pdfFwd(x). Merges (mergeEta > 0, vcm): the merge at x, once x has
 // moved to the camera side (light side), has the density p * mergeEta * pdfFwd(x), with its own
 // subpath's pdfFwd.
-inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta, const Junction& j, MisSum& m) {
+// The light side is read by light[i] alone: a Subpath, or (merges) vcm's compact MisVertex copy.
+template <class LightSide>
+inline void misWalk(const LightSide& light, int s, Subpath camera, int t, double mergeEta, const Junction& j, double r0, MisSum& m) {
     auto cameraRev = [&](int i) { return i == t - 1 ? j.ptRev : i == t - 2 ? j.ptMinusRev : camera[i].pdfRev; };
     auto lightRev = [&](int i) { return i == s - 1 ? j.qsRev : i == s - 2 ? j.qsMinusRev : light[i].pdfRev; };
     // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
     auto cameraDelta = [&](int i) { return i != t - 1 && camera[i].delta; };
     auto lightDelta = [&](int i) { return (i != s - 1 || j.lightEndDelta) && light[i].delta; };
-    double r = 1;
+    double r = r0;
     for (int i = t - 1; i > 0; --i) {  // more light vertices: strategies (s+1, t-1), ...
         r *= densityRatio(cameraRev(i), camera[i].pdfFwd);
         if (!cameraDelta(i) && !cameraDelta(i - 1)) m.add(r);
         bool becomesLightVertex0 = s == 0 && i == t - 1;  // the light's own vertex is not merged
         if (mergeEta > 0 && !cameraDelta(i) && !becomesLightVertex0) m.add(r * mergeEta * camera[i].pdfFwd);
     }
-    r = 1;
+    r = r0;
     for (int i = s - 1; i >= 0; --i) {  // more camera vertices: strategies (s-1, t+1), ...
         r *= densityRatio(lightRev(i), light[i].pdfFwd);
         bool deltaBefore = i > 0 ? lightDelta(i - 1) : light[0].deltaPosition;
@@ -1644,9 +1649,9 @@ inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta
 inline float misWeight(const Scene& scene, Subpath light, int s, Subpath camera, int t, Heuristic heuristic, const Connection& c,
                        double mergeEta) {
     if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
-    MisSum m{heuristic, 1};
+    MisSum m{heuristic};
     m.add(1);  // (s,t) itself
-    misWalk(light, s, camera, t, mergeEta, connectionJunction(scene, light, s, camera, t, c), m);
+    misWalk(light, s, camera, t, mergeEta, connectionJunction(scene, light, s, camera, t, c), 1, m);
     return m.weight();
 }
 
@@ -1835,13 +1840,14 @@ struct VcmPass {
     double mergeEta = 0;                  // pi r^2 N_light; 0: no merging (vcm is bdpt)
     std::vector<std::vector<PathVertex>> rowVertices;
     std::vector<Subpath> paths;
+    std::vector<MisVertex> misVertices;   // the MIS walk's part of every light vertex, path after path
     // A mergeable light vertex y = light[index] of paths[path] with what its merges need of the
-    // light subpath (qs = light[index - 1]), so that a merge reads this record alone.
+    // light subpath (qs = light[index - 1]); the walk reads misVertices[misFirst ...].
     struct Stored {
         Vec3 wo, beta;                    // y's
         double pdfFwd;                    // y's
         double qsAreaFactor;              // cos at qs / |qs - y|^2: a solid-angle density at y -> area at qs
-        uint32_t path, index;
+        uint32_t path, index, misFirst;
         bool qsDelta;
     };
     std::vector<Stored> stored;           // in the grid's bucket order
@@ -1849,15 +1855,16 @@ struct VcmPass {
     size_t bytes() const {  // what the light vertices and the grid take
         size_t b = 0;
         for (const std::vector<PathVertex>& row : rowVertices) b += row.capacity() * sizeof(PathVertex);
-        return b + paths.capacity() * sizeof(Subpath) + stored.capacity() * sizeof(Stored) + grid.points.capacity() * sizeof(Vec3) +
+        return b + paths.capacity() * sizeof(Subpath) + misVertices.capacity() * sizeof(MisVertex) + stored.capacity() * sizeof(Stored) +
+               grid.points.capacity() * sizeof(Vec3) +
                (grid.bucketStart.capacity() + grid.entries.capacity()) * sizeof(uint32_t);
     }
 };
 
 // The record of vertex i of the light subpath `light`, which is the pass's subpath number `path`.
-inline VcmPass::Stored storedVertex(Subpath light, int i, uint32_t path) {
+inline VcmPass::Stored storedVertex(Subpath light, int i, uint32_t path, uint32_t misFirst) {
     const PathVertex &y = light[i], &qs = light[i - 1];
-    return {y.wo, y.beta, y.pdfFwd, cosAt(qs, y.wo) / double(y.prevDist2), path, uint32_t(i), qs.delta};
+    return {y.wo, y.beta, y.pdfFwd, cosAt(qs, y.wo) / double(y.prevDist2), path, uint32_t(i), misFirst, qs.delta};
 }
 
 // r_0 when --radius is not given: one pixel's footprint where the central camera ray meets the
@@ -1904,16 +1911,18 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
     });
     rays += traced;
     vp.paths.clear();
+    vp.misVertices.clear();
     vp.stored.clear();
     std::vector<Vec3> points;  // of the stored vertices, for the grid (which keeps its own copy)
     for (int y = 0; y < H; ++y) {
         const PathVertex* v = vp.rowVertices[y].data();
         for (int n : rowLengths[y]) {
-            uint32_t path = uint32_t(vp.paths.size());
+            uint32_t path = uint32_t(vp.paths.size()), misFirst = uint32_t(vp.misVertices.size());
             vp.paths.emplace_back(v, n);
+            vp.misVertices.insert(vp.misVertices.end(), v, v + n);  // each vertex's MisVertex part
             for (int i = 1; i < n && vp.radius > 0; ++i)
                 if (connectable(scene, v[i])) {
-                    vp.stored.push_back(storedVertex(Subpath(v, n), i, path));
+                    vp.stored.push_back(storedVertex(Subpath(v, n), i, path, misFirst));
                     points.push_back(v[i].sp.p);
                 }
             v += n;
@@ -1936,8 +1945,8 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
 // notes, page 15); the other heuristics, continuous in the densities, change by O(r) only.
 // That costs one more BSDF evaluation per merge, at light[j-1]. After a delta event at light[j-1]
 // only y lies on the sampled direction, and y's geometry is kept.
-inline float mergeWeight(const Scene& scene, Subpath light, const VcmPass::Stored& y, Subpath camera, int t, Heuristic heuristic,
-                         double mergeEta, float pdf, float pdfReverse) {
+inline float mergeWeight(const Scene& scene, Subpath light, const MisVertex* lightMis, const VcmPass::Stored& y, Subpath camera, int t,
+                         Heuristic heuristic, double mergeEta, float pdf, float pdfReverse) {
     const int j = int(y.index);
     const PathVertex& x = camera[t - 1];
     Junction jn;
@@ -1951,13 +1960,13 @@ inline float mergeWeight(const Scene& scene, Subpath light, const VcmPass::Store
         jn.ptRev = y.pdfFwd;
         jn.qsRev = pdf * x.continuation * y.qsAreaFactor;
         jn.ptMinusRev = toArea(pdfReverse * x.continuation, camera[t - 2], x.wo, x.prevDist2);
-        jn.qsMinusRev = j >= 2 ? light[j - 2].pdfRev : 0;
+        jn.qsMinusRev = j >= 2 ? lightMis[j - 2].pdfRev : 0;
     }
     jn.lightEndDelta = true;
     if (!(self > 0)) return 0;  // a light vertex sampled with density 0 cannot be merged
-    MisSum m{heuristic, self};
-    if (!y.qsDelta) m.add(1);   // the connection (j, t)
-    misWalk(light, j, camera, t, mergeEta, jn, m);  // the merge itself among them
+    MisSum m{heuristic};
+    if (!y.qsDelta) m.add(1 / self);  // the connection (j, t)
+    misWalk(lightMis, j, camera, t, mergeEta, jn, 1 / self, m);  // the merge itself among them
     return m.weight();
 }
 
@@ -1973,14 +1982,15 @@ inline Vec3 mergeCameraVertices(const Scene& scene, const RenderOptions& opt, co
             const VcmPass::Stored& y = vp.stored[n];
             int k = int(y.index) + t - 1;  // path length: index + 1 light vertices, t camera, one shared
             if (k - 1 > opt.maxDepth) return;
-            const Subpath& light = vp.paths[y.path];  // the weight walks it: asked for now, it arrives during evalBsdf
-            for (uint32_t i = 0; i < y.index; ++i) __builtin_prefetch(&light[int(i)]);
+            const MisVertex* lightMis = &vp.misVertices[y.misFirst];  // the weight walks it: asked for now, it arrives during evalBsdf
+            __builtin_prefetch(lightMis);
+            __builtin_prefetch(lightMis + y.index);
             float pdf, pdfReverse;
             Vec3 f = evalBsdf(scene, x.sp, x.wo, y.wo, Transport::Radiance, pdf, pdfReverse);
             float cosLight = absDot(y.wo, x.sp.ng);  // the light subpath's flux arrived through ng
             if (isBlack(f) || cosLight == 0) return;
             Vec3 c = x.beta * f * y.beta / (cosLight * float(vp.mergeEta));
-            float w = mergeWeight(scene, light, y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
+            float w = mergeWeight(scene, vp.paths[y.path], lightMis, y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
             L += c * w;
             if (opt.strategyMaxLength > 0 && k <= opt.strategyMaxLength) {
                 int image = mergeImageIndex(k, opt.strategyMaxLength);

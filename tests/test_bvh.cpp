@@ -1,4 +1,4 @@
-// The BVH against the brute-force loop, on random scenes and the degenerate cases. (Issue: BVH.)
+// The BVH against the brute-force loop, on random scenes and the degenerate cases.
 #include "helpers.h"
 #include "bench.h"
 

@@ -1,4 +1,4 @@
-// Core renderer: intersector, BSDF energy, furnace, pt = nee, bad input. (Issue: core renderer.)
+// Core renderer: intersector, BSDF energy, furnace, pt = nee, bad input.
 #include "helpers.h"
 #include <regex>
 

@@ -1,5 +1,5 @@
 // Speed against accuracy: the metrics on images with known answers, and where each method fails,
-// as numbers. (Issue: speed against accuracy.)
+// as numbers.
 #include "helpers.h"
 
 static Image constantImage(int w, int h, float v) {

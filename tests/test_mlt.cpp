@@ -1,7 +1,7 @@
 // Metropolis light transport (mlt, mmlt): the sampler alone against a known target, its steps,
 // replay and restore, and the images against other methods region by region over independent
-// seeds. (Issue: Metropolis light transport.) A chain's passes are correlated, so their spread is
-// no error bar: every standard error here comes from independent seeds. The image mean alone
+// seeds. A chain's passes are correlated, so their spread is no error bar: every standard error
+// here comes from independent seeds. The image mean alone
 // proves nothing: with expected-value splats each pass's is its estimate of b, whatever the
 // chains do.
 #include "helpers.h"

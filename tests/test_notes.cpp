@@ -1,7 +1,7 @@
 // The lecture notes cannot rot: every function they cite exists in bdpt.cpp, every command they
 // show runs (at 1 sample per pixel and 8x8 pixels) and writes into build/, every make target
 // exists, every figure they show is in lecture_notes/figures/, and the formulas they state are
-// the ones the code computes. (Issues: lecture notes; lecture notes, second edition.)
+// the ones the code computes.
 #include "helpers.h"
 #include "densities.h"
 #include <dirent.h>

@@ -133,7 +133,7 @@ TEST_CASE("MIS walk: a density of 0 is not a delta, and the sharp-lobe extremes 
     // In double the sharp-lobe extremes stay finite: a ratio 1e+8 / 1e-31 (past float's 3.4e38),
     // squared by the power heuristic, on three vertices in a row.
     double r = 1e8 / 1e-31;
-    MisSum m{Heuristic::Power, 1};
+    MisSum m{Heuristic::Power};
     m.add(1);
     for (int i = 0; i < 3; ++i) m.add(r);
     CHECK(std::isfinite(m.sum));

@@ -1,4 +1,4 @@
-// Robustness: malformed scene files, Ctrl-C, numerical edge cases. (Issue: robustness.)
+// Robustness: malformed scene files, Ctrl-C, numerical edge cases.
 #include "helpers.h"
 #include <dirent.h>
 

@@ -1,6 +1,5 @@
 // Light tracing, instant radiosity, and where transport is not symmetric: refraction (eta^2) and
-// shading normals (the adjoint BSDF). (Issue: light tracing, instant radiosity, non-symmetric
-// scattering.)
+// shading normals (the adjoint BSDF).
 #include "helpers.h"
 
 static Vec3 randomUpper(Rng& rng) {

@@ -1,6 +1,6 @@
 // Vertex connection and merging: the hash grid, vcm against bdpt where both have every
-// technique, and against an exact answer where only vcm has one. (Issue: vertex connection and
-// merging.) Its MIS weights are checked with bdpt's, in test_bdpt.cpp.
+// technique, and against an exact answer where only vcm has one. Its MIS weights are checked
+// with bdpt's, in test_bdpt.cpp.
 #include "helpers.h"
 
 // -- The hash grid finds exactly the points within r --------------------------------------
