@@ -18,7 +18,8 @@ ifeq ($(NATIVE),1)
 CXXFLAGS += $(NATIVE_FLAGS)
 endif
 
-TESTS := $(patsubst tests/%.cpp,build/%,$(wildcard tests/test_*.cpp))
+TEST_FILES := $(wildcard tests/test_*.cpp)
+TEST_HEADERS := tests/helpers.h tests/bench.h tests/densities.h
 
 all: bdpt
 
@@ -35,28 +36,30 @@ run: bdpt
 	@mkdir -p build
 	./bdpt scenes/cornell.scene --spp 64 --out build/cornell.png
 
-build/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h tests/densities.h build/flags
+# One test file alone, as its own program (make build/test_bdpt), for work on it.
+build/%: tests/%.cpp bdpt.cpp $(TEST_HEADERS) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
-# Runs the test programs $(1); the last line sums their test cases ("N passed, N failed").
-define run-tests
-	@status=0; for t in $(1); do echo "== $$t"; ./$$t --reporters=notes 2>&1 | tee $$t.log; [ $${PIPESTATUS[0]} -eq 0 ] || status=1; done; \
-	cat $(addsuffix .log,$(1)) | awk '/test cases:/ { p += $$6; f += $$9 } END { printf "tests: %d passed, %d failed\n", p, f }'; \
-	exit $$status
-endef
+# make test: every test file in one program (tests/all_tests.cpp), so that bdpt.cpp is compiled
+# once; tests/run_tests.sh runs it file by file, one line each, and sums them on the last line.
+# Without debug information, which is a quarter of the compile (make build/test_bdpt keeps it).
+build/all_tests: tests/all_tests.cpp $(TEST_FILES) bdpt.cpp $(TEST_HEADERS) build/flags
+	@mkdir -p build
+	$(CXX) $(filter-out -g,$(CXXFLAGS)) -I. -o $@ $< $(LDLIBS)
 
 # The BVH tests once more as built by NATIVE=1 (8-wide AVX nodes where the CPU has AVX), and as
-# on a CPU without SSE (the scalar box test).
+# on a CPU without SSE (the scalar box test); at -O1 without debug information, which halves their
+# compile and leaves the arithmetic (no fast-math, no fused multiply-adds) as it is.
 build/native/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h tests/bench.h build/flags
 	@mkdir -p build/native
-	$(CXX) $(CXXFLAGS) $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
+	$(CXX) $(filter-out -O2 -g,$(CXXFLAGS)) -O1 $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
 build/scalar/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h tests/bench.h build/flags
 	@mkdir -p build/scalar
-	$(CXX) $(CXXFLAGS) -U__SSE2__ -U__AVX__ -I. -o $@ $< $(LDLIBS)
+	$(CXX) $(filter-out -O2 -g,$(CXXFLAGS)) -O1 -U__SSE2__ -U__AVX__ -I. -o $@ $< $(LDLIBS)
 
-test: bdpt $(TESTS) build/native/test_bvh build/scalar/test_bvh
-	$(call run-tests,$(TESTS) build/native/test_bvh build/scalar/test_bvh)
+test: bdpt build/all_tests build/native/test_bvh build/scalar/test_bvh
+	@tests/run_tests.sh build/all_tests build/native/test_bvh build/scalar/test_bvh
 
 # Speed against accuracy (gnuplot-nox), tests/charts.sh. Quick by default, into build/ only;
 # FULL=1 gives the notes' budgets (still into build/). make figures is the one target that
@@ -64,30 +67,30 @@ test: bdpt $(TESTS) build/native/test_bvh build/scalar/test_bvh
 # committed references in scenes/refs/. make help lists them with their durations.
 refs: bdpt
 	@echo "make refs: rewrites scenes/refs/ (committed), 2 seeds x 90 s per scene: about 40 minutes"
-	tests/charts.sh refs
+	+tests/charts.sh refs
 
 charts: bdpt
-	tests/charts.sh charts
+	+tests/charts.sh charts
 
 # The slides' six panels at 40 paths per pixel, for a class: build/panels/six-panels-40.png.
 panels: bdpt
 	@echo "make panels: six renders at 40 paths per pixel, about half a minute, into build/panels/"
-	tests/charts.sh panels
+	+tests/charts.sh panels
 
 efficiency: bdpt
-	tests/charts.sh efficiency
+	+tests/charts.sh efficiency
 
 figures: bdpt build/estimators
 	@echo "make figures: rewrites lecture_notes/figures/ and the tables in the pages (committed): about 35 minutes"
-	NOTES=1 tests/charts.sh charts
-	NOTES=1 tests/charts.sh efficiency
-	NOTES=1 tests/charts.sh figures
-	NOTES=1 tests/charts.sh notes
+	+NOTES=1 tests/charts.sh charts
+	+NOTES=1 tests/charts.sh efficiency
+	+NOTES=1 tests/charts.sh figures
+	+NOTES=1 tests/charts.sh notes
 
 help:
 	@echo "make            build ./bdpt (seconds)"
 	@echo "make run        render scenes/cornell.scene into build/cornell.png (seconds)"
-	@echo "make test       every test program (about 4 minutes on 2 cores); make test-sanitize (about 13)"
+	@echo "make test       every test file, one line each (about 3 minutes on 2 cores); make test-sanitize (about 11)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
 	@echo "make uneven     bdpt, mlt and mmlt per region on the door: build/uneven-door.png (about 1 minute)"
 	@echo "make charts     error against time, every method and scene, 1.5 s a run: build/charts/ (about 4 minutes)"
@@ -100,14 +103,12 @@ help:
 
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it too).
 SANITIZE := -O1 -g -std=c++17 -Wall -Wextra -pthread -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-SAN_TESTS := $(patsubst tests/%.cpp,build/san/%,$(wildcard tests/test_*.cpp))
-
-build/san/%: tests/%.cpp bdpt.cpp tests/helpers.h tests/bench.h tests/densities.h
+build/san/all_tests: tests/all_tests.cpp $(TEST_FILES) bdpt.cpp $(TEST_HEADERS)
 	@mkdir -p build/san
 	$(CXX) $(SANITIZE) -I. -o $@ $< $(LDLIBS)
 
-test-sanitize: bdpt $(SAN_TESTS)
-	$(call run-tests,$(SAN_TESTS))
+test-sanitize: bdpt build/san/all_tests
+	@tests/run_tests.sh build/san/all_tests
 
 # Fuzz the scene parser with libFuzzer (clang), from the bad-scene corpus, for FUZZ_SECONDS.
 FUZZ_SECONDS ?= 60

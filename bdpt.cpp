@@ -13,6 +13,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cerrno>
 #include <csignal>
@@ -2353,6 +2354,16 @@ struct RenderResult {
     long long mltAccepted = 0, mltProposed = 0;
 };
 
+// 13 h 20 min, 4 min 05 s, 12.3 s: what a person reads at a glance.
+inline std::string duration(double seconds) {
+    char text[32];
+    long s = long(seconds + 0.5);
+    if (seconds >= 3600) std::snprintf(text, sizeof text, "%ld h %02ld min", s / 3600, s / 60 % 60);
+    else if (seconds >= 60) std::snprintf(text, sizeof text, "%ld min %02ld s", s / 60, s % 60);
+    else std::snprintf(text, sizeof text, "%.1f s", seconds);
+    return text;
+}
+
 struct ProgressBar {
     bool enabled = false;
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last;
@@ -2362,9 +2373,9 @@ struct ProgressBar {
         if (fraction < 1 && now - last < std::chrono::milliseconds(200)) return;
         last = now;
         int width = 30, filled = int(std::min(1.0, fraction) * width);
-        std::fprintf(stderr, "\r[%s%s] %3d%%  pass %d  ETA %5.1f s ", std::string(filled, '#').c_str(),
+        std::fprintf(stderr, "\r[%s%s] %3d%%  pass %d  ETA %s   ", std::string(filled, '#').c_str(),
                      std::string(width - filled, '.').c_str(), int(100 * std::min(1.0, fraction)), passes,
-                     std::max(0.0, etaSeconds));
+                     duration(std::max(0.0, etaSeconds)).c_str());
         if (fraction >= 1) std::fprintf(stderr, "\n");
     }
 };
@@ -2858,6 +2869,31 @@ inline std::string printable(const std::string& s) {  // binary garbage must not
     return s.size() > 40 ? out + "..." : out;
 }
 
+// Levenshtein's distance of two short words: how many letters to add, drop or change.
+inline size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+// The known word closest to a misspelt one, if it is close (a quarter of its letters or two,
+// whichever is more): "" otherwise.
+inline std::string closestWord(const std::string& word, const std::vector<std::string>& known) {
+    std::string best;
+    size_t bestDistance = std::max<size_t>(2, word.size() / 4) + 1;
+    for (const std::string& k : known)
+        if (size_t d = editDistance(word, k); d < bestDistance) best = k, bestDistance = d;
+    return best;
+}
+
 struct SceneParser {
     std::string file;
     int line = 0;
@@ -2958,7 +2994,12 @@ struct SceneParser {
     void parseShapeOptions(Shape& s) {  // the optional words after the material name
         std::string name = word("material name");
         auto it = materialIndex.find(name);
-        if (it == materialIndex.end()) fail("unknown material '" + printable(name) + "' (define it first)");
+        if (it == materialIndex.end()) {
+            std::vector<std::string> known;
+            for (const auto& m : materialIndex) known.push_back(m.first);
+            std::string near = closestWord(name, known);
+            fail("unknown material '" + printable(name) + "' (" + (near.empty() ? "define it first" : "did you mean '" + near + "'?") + ")");
+        }
         s.material = it->second;
         while (more()) {
             std::string opt = word("option");
@@ -3086,7 +3127,12 @@ inline Scene parseScene(const std::string& text, const std::string& fileName) {
 
 inline Scene loadScene(const std::string& path) {
     struct stat st;
-    if (stat(path.c_str(), &st) != 0) throw InputError(path + ": cannot open the scene file: " + std::strerror(errno));
+    if (stat(path.c_str(), &st) != 0) {
+        std::string problem = path + ": cannot open the scene file: " + std::strerror(errno);
+        for (const std::string& guess : {"scenes/" + path, path + ".scene", "scenes/" + path + ".scene"})
+            if (stat(guess.c_str(), &st) == 0 && S_ISREG(st.st_mode)) throw InputError(problem + " (did you mean " + guess + "?)");
+        throw InputError(problem);
+    }
     if (S_ISDIR(st.st_mode)) throw InputError(path + ": is a folder, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open the scene file: " + std::strerror(errno));
@@ -3118,6 +3164,7 @@ struct CommandLine {
     bool average = false;        // --average: write their mean to out
     bool ratio = false;          // --ratio: write their block ratio to out
     bool exposureGiven = false;  // else the scene's exposure directive sets it
+    bool overwrite = false;      // --overwrite: --out may replace a file the project ships
     std::set<std::string> given; // the options on the line
 };
 
@@ -3290,6 +3337,10 @@ inline const std::vector<OptionSpec> kOptions = {
      }},
     {"--exposure", "STOPS", {}, "", "scale the PNG by 2^STOPS (the PFM stays linear)",
      [](CL& cl, A& a) { cl.opt.exposure = float(a.number(-50, 50)), cl.exposureGiven = true; }},
+    {"--overwrite", "", {}, "",
+     "let --out replace a file the project ships (a scene's reference, a figure of\n"
+     "the notes: anything under scenes/ or lecture_notes/); refused without it",
+     [](CL& cl, A&) { cl.overwrite = true; }},
     {"--quiet", "", {}, "", "no progress bar and no summary line", [](CL& cl, A&) { cl.opt.quiet = true; }},
     {"--live", "SECONDS", {}, "",
      "while rendering, rewrite the PNG from the passes so far at most every\n"
@@ -3373,6 +3424,18 @@ inline void checkCombinations(CommandLine& cl) {
     if (!cl.strategiesDir.empty()) cl.opt.strategyMaxLength = cl.strategyLength;
 }
 
+// The option a misspelt one probably meant: the closest name, or what other programs call it.
+inline std::string suggestedOption(const std::string& word) {
+    static const std::map<std::string, std::string> otherNames = {
+        {"--samples", "--spp"}, {"--output", "--out"}, {"--resolution", "--res"}, {"--depth", "--maxdepth"},
+        {"--integrator", "--method"}, {"--mis-heuristic", "--heuristic"}, {"--reference", "--ref"}};
+    if (otherNames.count(word)) return otherNames.at(word);
+    std::vector<std::string> names;
+    for (const OptionSpec& o : kOptions)
+        if (o.name) names.push_back(o.name);
+    return closestWord(word, names);
+}
+
 inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
     CommandLine cl;
     ArgReader in{args};
@@ -3385,8 +3448,10 @@ inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
             option->apply(cl, in);
         } else if (!a.empty() && a[0] == '-') {
             size_t equals = a.find('=');
-            in.fail("unknown option '" + printable(a) + "'" +
-                    (equals != std::string::npos ? " (write '" + printable(a.substr(0, equals)) + " " + printable(a.substr(equals + 1)) + "')" : ""));
+            if (equals != std::string::npos)
+                in.fail("unknown option '" + printable(a) + "' (write '" + printable(a.substr(0, equals)) + " " + printable(a.substr(equals + 1)) + "')");
+            std::string near = suggestedOption(a);
+            in.fail("unknown option '" + printable(a) + "'" + (near.empty() ? "" : " (did you mean " + near + "?)"));
         } else if (cl.scenePath.empty()) {
             cl.scenePath = a;
         } else {
@@ -3528,6 +3593,15 @@ inline bool makeFolders(const std::string& path) {
     return true;
 }
 
+// A file the project ships, which a careless --out would lose: an existing file under a folder
+// scenes/ or lecture_notes/ (a scene's reference, a figure of the notes).
+inline bool shippedFile(const std::string& path) {
+    char resolved[PATH_MAX];
+    if (!realpath(path.c_str(), resolved)) return false;  // not there: nothing to lose
+    std::string p = resolved;
+    return p.find("/scenes/") != std::string::npos || p.find("/lecture_notes/") != std::string::npos;
+}
+
 // Every file the render will write, checked (and --strategies DIR made) before it starts.
 inline std::string checkOutputs(const CommandLine& cl, const std::string& pfm) {
     std::vector<std::string> files = {cl.out, pfm};
@@ -3535,6 +3609,8 @@ inline std::string checkOutputs(const CommandLine& cl, const std::string& pfm) {
     for (const std::string& f : files) {
         if (sameFile(f, cl.scenePath) || (!cl.refPath.empty() && sameFile(f, cl.refPath)))
             return "will not write " + f + ": it is an input of this run";
+        if (!cl.overwrite && shippedFile(f))
+            return "will not overwrite " + f + ": the project ships it (a scene's reference or a figure of the notes); give --overwrite to replace it";
         std::string why = unwritable(f);
         if (!why.empty()) return "cannot write " + f + ": " + why;
     }
@@ -3629,6 +3705,11 @@ inline void warnAboutScene(const Scene& scene, const RenderOptions& opt, std::os
 
 // --compare, --average and --ratio: two PFM images in, numbers or an image out. Returns the exit status.
 inline int runImageTool(const CommandLine& cl, std::ostream& out, std::ostream& err) {
+    std::string problem = cl.average || cl.ratio ? checkOutputs(cl, replaceExtension(cl.out, ".pfm")) : "";
+    if (!problem.empty()) {
+        err << "bdpt: " << problem << "\n";
+        return 1;
+    }
     Image a, b;
     const char* verb = cl.average ? "average" : cl.ratio ? "divide" : "compare";
     for (auto [path, img] : {std::make_pair(&cl.pfmA, &a), std::make_pair(&cl.pfmB, &b)}) {
@@ -3803,6 +3884,13 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         return kExitInterrupted;
     }
     if (!cl.opt.quiet) printMethodSummary(cl, scene, r, out);
+    if (!cl.opt.quiet && ref.width > 0) {
+        ErrorMetrics m = compareToReference(r.image, ref);
+        char text[256];
+        std::snprintf(text, sizeof text, "against %s: rmse %.4g (%.4g without the lamp's pixels), relmse %.4g, bias %+.2f%%\n",
+                      cl.refPath.c_str(), m.rmse, m.rmseWithoutLamp, m.relMse, 100 * m.bias);
+        out << text;
+    }
     return 0;
 }
 

@@ -33,6 +33,12 @@ if [ -n "$NOTES" ]; then FIG=lecture_notes/figures; else FIG=$LOGS/figures; fi
 RECORD=lecture_notes/appendix-a-speed-and-accuracy.md  # where the generated tables go (NOTES=1)
 mkdir -p "$FIG" "$LOGS/refs" scenes/refs
 
+# gnuplot draws every chart and figure: missing, say so before any work (Debian: gnuplot-nox).
+case "${1:-charts}" in
+  charts|panels|figures|plots|notes|estimators|furnaceseries|sds|thingap)
+    command -v gnuplot >/dev/null || { echo "tests/charts.sh ${1:-charts}: needs gnuplot, which is not installed (apt-get install gnuplot-nox); nothing done" >&2; exit 1; } ;;
+esac
+
 # splice TABLE PAGE MARKER: the table replaces what stands between <!-- MARKER:start --> and
 # <!-- MARKER:end --> in the page (NOTES=1 only: otherwise the table stays in build/).
 splice() {
@@ -107,7 +113,7 @@ refs() {
   for s in $SCENES; do
     if [ "$s" = furnace ]; then
       furnaceReference scenes/refs/furnace.pfm
-      ./bdpt --average scenes/refs/furnace.pfm scenes/refs/furnace.pfm --out scenes/refs/furnace.png
+      ./bdpt --average scenes/refs/furnace.pfm scenes/refs/furnace.pfm --out scenes/refs/furnace.png --overwrite
       row="furnace,analytic,0,0,0,0,0"
       echo "reference furnace: analytic, 2 in every pixel"
     else
@@ -118,7 +124,7 @@ refs() {
         ./bdpt "$(refScene "$s")" --method $m $(refOptions "$s") --res "$RES" --time "$secs" --seed $seed --quiet \
           --out "$LOGS/refs/$s-$seed.png" --log "$LOGS/refs/$s-$seed.csv"
       done
-      ./bdpt --average "$LOGS/refs/$s-101.pfm" "$LOGS/refs/$s-102.pfm" --out scenes/refs/$s.png
+      ./bdpt --average "$LOGS/refs/$s-101.pfm" "$LOGS/refs/$s-102.pfm" --out scenes/refs/$s.png --overwrite
       diff=$(./bdpt --compare "$LOGS/refs/$s-102.pfm" "$LOGS/refs/$s-101.pfm")
       spp1=$(tail -1 "$LOGS/refs/$s-101.csv" | cut -d, -f5); spp2=$(tail -1 "$LOGS/refs/$s-102.csv" | cut -d, -f5)
       row="$s,$m,$secs,$spp1,$spp2,$(echo "$diff" | awk '{print $2","$4}')"
@@ -210,6 +216,16 @@ tables() {
   for s in $SCENES; do while IFS='|' read -r label opts; do logs+=("$LOGS/$s-$label.csv"); done < <(methods "$s"); done
   ./bdpt --failure-table "${logs[@]}" > "$FIG/failure-table.md"
   echo "failure table: $FIG/failure-table.md"
+  # A slope fitted to a handful of passes is noise (a busy machine finishes fewer): say which.
+  local few=0
+  for log in "${logs[@]}"; do
+    passes=$(( $(wc -l < "$log") - 1 ))
+    if [ "$passes" -lt 8 ]; then
+      echo "warning: $log has only $passes passes: its slope and bias in the table mean little (FULL=1 runs 4 s each)" >&2
+      few=$((few + 1))
+    fi
+  done
+  [ "$few" -eq 0 ] || echo "warning: $few of ${#logs[@]} runs finished fewer than 8 passes; read their rows as noise" >&2
   splice "$FIG/failure-table.md" "$RECORD" failure-table
   refcheck
 }
@@ -415,7 +431,7 @@ notes() {  # every figure of the pages, by the commands they show
     mkdir -p build/notes
     echo "$cmd"
     # shellcheck disable=SC2086
-    $cmd --quiet
+    $cmd --quiet --overwrite  # NOTES=1 only: the pages' figures are the project's
   done
 }
 

@@ -120,8 +120,11 @@ inline std::string readFile(const std::string& path) {
     return s.str();
 }
 
+// The tests' files go into build/tmp/, which make test empties before and removes after them.
+inline const bool kTempFolderMade = (mkdir("build", 0777), mkdir("build/tmp", 0777), true);
+
 inline std::string writeTempFile(const std::string& name, const std::string& text) {
-    std::string path = "build/tmp_" + name;
+    std::string path = "build/tmp/" + name;
     std::ofstream(path, std::ios::binary) << text;
     return path;
 }

@@ -836,7 +836,7 @@ TEST_CASE("SDS: with a point light no method makes L S D S E; with an area light
 }
 
 TEST_CASE("--strategies writes every (s,t) image, weighted and not, and the two pyramids") {
-    std::string dir = "build/tmp_strategies";
+    std::string dir = "build/tmp/strategies";
     std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str());
     std::ostringstream so, se;
     CHECK(runCommandLine({"scenes/cornell.scene", "--method", "bdpt", "--res", "16x16", "--spp", "2", "--strategies", dir,

@@ -217,20 +217,20 @@ TEST_CASE("the image is the same bit for bit with 1 and 2 threads") {
 TEST_CASE("PFM round trip and atomic output files") {
     Scene scene = sceneAt("scenes/cornell.scene", 8, 6);
     RenderResult r = render(scene, quietOptions(Method::NEE, 1));
-    REQUIRE(writePFM(r.image, "build/tmp_roundtrip.pfm"));
+    REQUIRE(writePFM(r.image, "build/tmp/roundtrip.pfm"));
     Image back;
-    REQUIRE(readPFM("build/tmp_roundtrip.pfm", back));
+    REQUIRE(readPFM("build/tmp/roundtrip.pfm", back));
     CHECK(back.width == 8);
     CHECK(back.height == 6);
     CHECK(std::memcmp(back.pixels.data(), r.image.pixels.data(), back.pixels.size() * sizeof(Vec3)) == 0);
-    CHECK(!fileExists(tempName("build/tmp_roundtrip.pfm")));
+    CHECK(!fileExists(tempName("build/tmp/roundtrip.pfm")));
     CHECK(!writePFM(r.image, "build/no-such-dir/x.pfm"));
     CHECK(!fileExists("build/no-such-dir/x.pfm"));
 }
 
 // Every kind of bad input: its message, exit status 2, and no output file.
 static void expectBadInput(const std::string& sceneText, const std::vector<std::string>& extraArgs, const std::string& message) {
-    std::string scene = writeTempFile("bad.scene", sceneText), out = "build/tmp_bad_out.png";
+    std::string scene = writeTempFile("bad.scene", sceneText), out = "build/tmp/bad_out.png";
     std::remove(out.c_str());
     std::vector<std::string> args = {scene, "--out", out, "--quiet"};
     args.insert(args.end(), extraArgs.begin(), extraArgs.end());
@@ -242,7 +242,7 @@ static void expectBadInput(const std::string& sceneText, const std::vector<std::
     CHECK(status == 2);
     CHECK(se.str().find(message) != std::string::npos);
     CHECK(!fileExists(out));
-    CHECK(!fileExists("build/tmp_bad_out.pfm"));
+    CHECK(!fileExists("build/tmp/bad_out.pfm"));
 }
 
 TEST_CASE("bad input: file:line message, exit 2, no output file") {
@@ -278,9 +278,9 @@ TEST_CASE("bad input: file:line message, exit 2, no output file") {
     expectBadInput(cam + light, {"--spp", "4", "--spp", "8"}, "bdpt: option --spp given twice");
     expectBadInput(cam + light, {"--out=x.png"}, "bdpt: unknown option '--out=x.png' (write '--out x.png')");
     std::ostringstream so, se;
-    CHECK(runCommandLine({"build/does-not-exist.scene", "--out", "build/tmp_bad_out.png"}, so, se) == 2);
+    CHECK(runCommandLine({"build/does-not-exist.scene", "--out", "build/tmp/bad_out.png"}, so, se) == 2);
     CHECK(se.str() == "build/does-not-exist.scene: cannot open the scene file: No such file or directory\n");
-    CHECK(!fileExists("build/tmp_bad_out.png"));
+    CHECK(!fileExists("build/tmp/bad_out.png"));
 }
 
 TEST_CASE("--help lists every option the parser accepts, and the README's table too") {
@@ -300,13 +300,13 @@ TEST_CASE("--help lists every option the parser accepts, and the README's table 
 }
 
 TEST_CASE("a good run writes both files and reports them") {
-    std::remove("build/tmp_good.png");
-    std::remove("build/tmp_good.pfm");
+    std::remove("build/tmp/good.png");
+    std::remove("build/tmp/good.pfm");
     std::ostringstream so, se;
-    CHECK(runCommandLine({"scenes/furnace.scene", "--res", "8x8", "--spp", "2", "--out", "build/tmp_good.png"}, so, se) == 0);
-    CHECK(fileExists("build/tmp_good.png"));
+    CHECK(runCommandLine({"scenes/furnace.scene", "--res", "8x8", "--spp", "2", "--out", "build/tmp/good.png"}, so, se) == 0);
+    CHECK(fileExists("build/tmp/good.png"));
     Image img;
-    REQUIRE(readPFM("build/tmp_good.pfm", img));
+    REQUIRE(readPFM("build/tmp/good.pfm", img));
     CHECK(img.width == 8);
     CHECK(imageMean(img) == doctest::Approx(2.0).epsilon(0.1));
     CHECK(so.str().find("0 non-finite samples dropped") != std::string::npos);
@@ -318,7 +318,7 @@ TEST_CASE("PFM bytes: header, little-endian floats, rows from the bottom up (wri
     img.at(1, 0) = Vec3(4, 5, 6);
     img.at(0, 1) = Vec3(0.5f, -1, 0);  // bottom row: written first
     img.at(1, 1) = Vec3(7, 8, 9);
-    std::string path = "build/tmp_bytes.pfm";
+    std::string path = "build/tmp/bytes.pfm";
     REQUIRE(writePFM(img, path));
     std::string bytes = readFile(path);
     std::string expected = "PF\n2 2\n-1.0\n";
@@ -339,9 +339,9 @@ TEST_CASE("the PNG's transfer curve is sRGB's, not a plain gamma, from the value
     const std::vector<double> values = {0, 0.0002, 0.001, 0.0025, 0.004, 0.01, 0.05, 0.18, 0.5, 0.8, 1, 3};
     Image img(int(values.size()), 1);
     for (size_t i = 0; i < values.size(); ++i) img.pixels[i] = Vec3(float(values[i]) * 0.5f);  // exposure +1 stop below
-    REQUIRE(writePNG(img, "build/tmp_srgb.png", 1.0f));
+    REQUIRE(writePNG(img, "build/tmp/srgb.png", 1.0f));
     int w = 0, h = 0, channels = 0;
-    unsigned char* bytes = stbi_load("build/tmp_srgb.png", &w, &h, &channels, 3);
+    unsigned char* bytes = stbi_load("build/tmp/srgb.png", &w, &h, &channels, 3);
     REQUIRE(bytes);
     CHECK(w == int(values.size()));
     for (size_t i = 0; i < values.size(); ++i) {
@@ -352,5 +352,5 @@ TEST_CASE("the PNG's transfer curve is sRGB's, not a plain gamma, from the value
     CHECK(int(bytes[3 * 2]) == 3);                                          // 0.001: 3, not gamma 2.2's 11
     CHECK(std::lround(std::pow(0.001, 1 / 2.2) * 255) == 11);
     stbi_image_free(bytes);
-    std::remove("build/tmp_srgb.png");
+    std::remove("build/tmp/srgb.png");
 }

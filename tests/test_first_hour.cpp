@@ -21,26 +21,26 @@ TEST_CASE("output paths are checked before rendering: the path and the reason, s
     Run r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "/nonexistent/dir/x.png"});
     CHECK(r.status == 1);
     CHECK(r.err == "bdpt: cannot write /nonexistent/dir/x.png: the folder /nonexistent/dir does not exist (nothing rendered)\n");
-    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh.png", "--log", "/nonexistent/log.csv"});
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp/fh.png", "--log", "/nonexistent/log.csv"});
     CHECK(r.status == 1);
     CHECK(contains(r.err, "cannot write /nonexistent/log.csv: the folder /nonexistent does not exist"));
-    CHECK(!fileExists("build/tmp_fh.png"));  // a bad --log no longer costs the image: nothing is done at all
-    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh.png", "--log", "build"});
+    CHECK(!fileExists("build/tmp/fh.png"));  // a bad --log no longer costs the image: nothing is done at all
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp/fh.png", "--log", "build"});
     CHECK(r.status == 2);  // not a .csv name
-    mkdir("build/tmp_fh_folder.png", 0777);
-    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh_folder.png"});
+    mkdir("build/tmp/fh_folder.png", 0777);
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp/fh_folder.png"});
     CHECK(r.status == 1);
-    CHECK(contains(r.err, "cannot write build/tmp_fh_folder.png: it is a folder"));
+    CHECK(contains(r.err, "cannot write build/tmp/fh_folder.png: it is a folder"));
     // /proc lets root pass the permission check and refuses the file only when it is made.
     r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "/proc/tmp_fh.png"});
     CHECK(r.status == 1);
     CHECK(contains(r.err, "cannot write /proc/tmp_fh.png: "));
-    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh_log.png", "--log", "/dev/null"});
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp/fh_log.png", "--log", "/dev/null"});
     CHECK(r.status == 2);  // not a .csv name, before anything else
-    symlink("/dev/null", "build/tmp_fh_device.csv");
-    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp_fh_dev.png", "--log", "build/tmp_fh_device.csv"});
+    symlink("/dev/null", "build/tmp/fh_device.csv");
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp/fh_dev.png", "--log", "build/tmp/fh_device.csv"});
     CHECK(r.status == 1);
-    CHECK(contains(r.err, "cannot write build/tmp_fh_device.csv: it is not a regular file"));
+    CHECK(contains(r.err, "cannot write build/tmp/fh_device.csv: it is not a regular file"));
     CHECK(secondsSince(t0) < 5);  // 100,000 passes were asked for each time: none was rendered
 }
 
@@ -58,19 +58,19 @@ static std::pair<int, std::string> shellRun(const std::string& command) {
 }
 
 TEST_CASE("memory is estimated before work: a render beyond the process's limit is refused with the estimate") {
-    std::remove("build/tmp_fh_mem.png");  // the small render below makes it, in every run of the suite
+    std::remove("build/tmp/fh_mem.png");  // the small render below makes it, in every run of the suite
     auto t0 = std::chrono::steady_clock::now();
-    auto [status, text] = shellRun("ulimit -v 2000000; ./bdpt scenes/cornell.scene --res 8000x8000 --out build/tmp_fh_mem.png");
+    auto [status, text] = shellRun("ulimit -v 2000000; ./bdpt scenes/cornell.scene --res 8000x8000 --out build/tmp/fh_mem.png");
     CHECK(status == 1);
     CHECK(contains(text, "this render needs about 5."));
     CHECK(contains(text, "GB for 8000x8000 pixels, more than the 2.05 GB this process may use"));
-    CHECK(!fileExists("build/tmp_fh_mem.png"));
+    CHECK(!fileExists("build/tmp/fh_mem.png"));
     CHECK(secondsSince(t0) < 5);
-    auto [small, smallText] = shellRun("ulimit -v 2000000; ./bdpt scenes/cornell.scene --res 32x32 --spp 1 --quiet --out build/tmp_fh_mem.png");
+    auto [small, smallText] = shellRun("ulimit -v 2000000; ./bdpt scenes/cornell.scene --res 32x32 --spp 1 --quiet --out build/tmp/fh_mem.png");
     CHECK(small == 0);
-    CHECK(fileExists("build/tmp_fh_mem.png"));
+    CHECK(fileExists("build/tmp/fh_mem.png"));
     // vcm holds every light vertex of a pass: at 1024x1024 about 2 GB more.
-    auto [vcm, vcmText] = shellRun("ulimit -v 2000000; ./bdpt scenes/cornell.scene --method vcm --res 1024x1024 --out build/tmp_fh_vcm.png");
+    auto [vcm, vcmText] = shellRun("ulimit -v 2000000; ./bdpt scenes/cornell.scene --method vcm --res 1024x1024 --out build/tmp/fh_vcm.png");
     CHECK(vcm == 1);
     CHECK(contains(vcmText, "GB for 1024x1024 pixels"));
 }
@@ -89,23 +89,23 @@ TEST_CASE("--out takes a .png name only, and no run writes over one of its input
     CHECK(contains(r.err, "will not write " + path + ": it is an input of this run"));
     CHECK(readFile(path) == scene);
     std::string csv = writeTempFile("scene.csv", scene);
-    r = run({csv, "--spp", "1", "--res", "8x8", "--out", "build/tmp_fh2.png", "--log", csv});
+    r = run({csv, "--spp", "1", "--res", "8x8", "--out", "build/tmp/fh2.png", "--log", csv});
     CHECK(r.status == 1);
     CHECK(readFile(csv) == scene);
-    CHECK(run({"scenes/furnace.scene", "--spp", "1", "--res", "8x8", "--quiet", "--out", "build/tmp_fh2.PNG"}).status == 0);
+    CHECK(run({"scenes/furnace.scene", "--spp", "1", "--res", "8x8", "--quiet", "--out", "build/tmp/fh2.PNG"}).status == 0);
 }
 
 TEST_CASE("--strategies DIR is created, with its parents") {
-    std::system("rm -rf build/tmp_fh_strategies");
+    std::system("rm -rf build/tmp/fh_strategies");
     Run r = run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--strategy-length", "2", "--strategies",
-                 "build/tmp_fh_strategies/a/b", "--out", "build/tmp_fh3.png", "--quiet"});
+                 "build/tmp/fh_strategies/a/b", "--out", "build/tmp/fh3.png", "--quiet"});
     CHECK(r.status == 0);
-    CHECK(fileExists("build/tmp_fh_strategies/a/b/pyramid-weighted.png"));
-    CHECK(fileExists("build/tmp_fh_strategies/a/b/s1_t2_unweighted.pfm"));
-    std::ofstream("build/tmp_fh_file") << "x";
-    r = run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--strategies", "build/tmp_fh_file/sub", "--out", "build/tmp_fh3.png"});
+    CHECK(fileExists("build/tmp/fh_strategies/a/b/pyramid-weighted.png"));
+    CHECK(fileExists("build/tmp/fh_strategies/a/b/s1_t2_unweighted.pfm"));
+    std::ofstream("build/tmp/fh_file") << "x";
+    r = run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--strategies", "build/tmp/fh_file/sub", "--out", "build/tmp/fh3.png"});
     CHECK(r.status == 1);
-    CHECK(contains(r.err, "cannot make the folder build/tmp_fh_file/sub"));
+    CHECK(contains(r.err, "cannot make the folder build/tmp/fh_file/sub"));
 }
 
 TEST_CASE("options that the method would ignore are refused, naming the method they belong to") {
@@ -127,14 +127,14 @@ TEST_CASE("options that the method would ignore are refused, naming the method t
              {{"--res", "16384x16384"}, "option --res: 16384x16384 is larger than 64 megapixels"},
              {{"--spp", "0"}, "option --spp needs a number from 1 to 1e+08, got '0'"},
          }) {
-        std::vector<std::string> args = {"scenes/cornell.scene", "--out", "build/tmp_fh4.png"};
+        std::vector<std::string> args = {"scenes/cornell.scene", "--out", "build/tmp/fh4.png"};
         args.insert(args.end(), c.args.begin(), c.args.end());
         Run r = run(args);
         CAPTURE(c.message);
         CHECK(r.status == 2);
         CHECK(contains(r.err, c.message));
     }
-    CHECK(!fileExists("build/tmp_fh4.png"));
+    CHECK(!fileExists("build/tmp/fh4.png"));
 }
 
 TEST_CASE("scene files from other editors and systems: a byte-order mark, CR and CRLF line endings") {
@@ -173,44 +173,44 @@ TEST_CASE("warnings before the work: one light takes nearly all of the choice; a
                                                  "quad -2 0 -2  4 0 0  0 0 4  m\n"
                                                  "sphere 0 0 0  1000  m emit 0.05 0.05 0.05 inside\n"
                                                  "quad -0.1 2 -0.1  0 0 0.2  0.2 0 0  m emit 5 5 5\n");
-    Run r = run({sky, "--spp", "1", "--out", "build/tmp_fh5.png", "--quiet"});
+    Run r = run({sky, "--spp", "1", "--out", "build/tmp/fh5.png", "--quiet"});
     CHECK(r.status == 0);
     CHECK(contains(r.err, sky + ":4: warning: this light takes 99.9"));
     // A lamp above an open floor whose front (u x v) faces up, into the empty sky: nothing is lit.
     std::string away = writeTempFile("away.scene", "camera 0 1 -4  0 0 0  0 1 0  50  16 16\nmaterial m diffuse 0.5 0.5 0.5\n"
                                                    "quad -2 0 -2  4 0 0  0 0 4  m\n"
                                                    "quad -0.1 2 -0.1  0 0 0.2  0.2 0 0  m emit 5 5 5\n");
-    r = run({away, "--spp", "1", "--out", "build/tmp_fh5.png", "--quiet"});
+    r = run({away, "--spp", "1", "--out", "build/tmp/fh5.png", "--quiet"});
     CHECK(r.status == 0);
     CHECK(contains(r.err, away + ": warning: a quick preview"));
     CHECK(contains(r.err, "sees no light at all"));
     // The box of the furnace and the Cornell box raise neither.
-    CHECK(run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--out", "build/tmp_fh5.png", "--quiet"}).err.empty());
+    CHECK(run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--out", "build/tmp/fh5.png", "--quiet"}).err.empty());
     // The Cornell box's lamp with u and v swapped faces the ceiling 0.1 mm above it: the room
     // renders almost black (mean 0.0007 against 0.12), and the warning names the line and the fix.
     std::string cornell = readFile("scenes/cornell.scene"), lamp = "quad 343 548.7 227   0 0 105   -130 0 0   lamp";
     REQUIRE(cornell.find(lamp) != std::string::npos);
     std::string swapped = writeTempFile("swapped.scene", cornell.replace(cornell.find(lamp), lamp.size(),
                                                                          "quad 343 548.7 227   -130 0 0   0 0 105   lamp"));
-    r = run({swapped, "--res", "16x16", "--spp", "4", "--out", "build/tmp_fh5.png", "--quiet"});
+    r = run({swapped, "--res", "16x16", "--spp", "4", "--out", "build/tmp/fh5.png", "--quiet"});
     CHECK(r.status == 0);
     CHECK(contains(r.err, swapped + ":19: warning: this light's emitting side (u x v for a quad) faces a surface 0.0999 away: 0% of "
                           "its light gets farther, 7"));
     CHECK(contains(r.err, "swap its u and v"));
     // A lamp 0.5 mm above a floor, with nothing around it (tests/thin-gap.scene), is meant so.
-    CHECK(run({"tests/thin-gap.scene", "--res", "8x8", "--spp", "1", "--out", "build/tmp_fh5.png", "--quiet"}).err.empty());
+    CHECK(run({"tests/thin-gap.scene", "--res", "8x8", "--spp", "1", "--out", "build/tmp/fh5.png", "--quiet"}).err.empty());
 }
 
 TEST_CASE("a scene sets the PNG's default exposure (the furnace: grey, not white); --exposure overrides it") {
     CHECK(loadScene("scenes/furnace.scene").exposure == -2);
     for (bool override : {false, true}) {
-        std::vector<std::string> args = {"scenes/furnace.scene", "--res", "8x8", "--spp", "4", "--quiet", "--out", "build/tmp_fh6.png"};
+        std::vector<std::string> args = {"scenes/furnace.scene", "--res", "8x8", "--spp", "4", "--quiet", "--out", "build/tmp/fh6.png"};
         if (override) args.insert(args.end(), {"--exposure", "0"});
         REQUIRE(run(args).status == 0);
         Image img;
-        REQUIRE(readPFM("build/tmp_fh6.pfm", img));
-        REQUIRE(writePNG(img, "build/tmp_fh6-expected.png", override ? 0 : -2));
-        CHECK(readFile("build/tmp_fh6.png") == readFile("build/tmp_fh6-expected.png"));
+        REQUIRE(readPFM("build/tmp/fh6.pfm", img));
+        REQUIRE(writePNG(img, "build/tmp/fh6-expected.png", override ? 0 : -2));
+        CHECK(readFile("build/tmp/fh6.png") == readFile("build/tmp/fh6-expected.png"));
         int grey = toSRGBBytes(img, override ? 0 : -2)[0];  // 2 clips to white; 0.5 (within noise) is sRGB 188
         CHECK(grey >= (override ? 255 : 180));
         CHECK(grey <= (override ? 255 : 196));
@@ -221,30 +221,71 @@ TEST_CASE("a scene sets the PNG's default exposure (the furnace: grey, not white
 TEST_CASE("Ctrl-C is said at once; twice within a second is one press (timeout signals the group)") {
     // `timeout -s INT` sends SIGINT to the process and then to its group: two signals at once.
     // (A second press a second or more later abandons the render: test_robustness.)
-    std::remove("build/tmp_fh_int.png");
-    std::remove("build/tmp_fh_int.pfm");
-    InterruptedRun r = interruptRun({"scenes/cornell.scene", "--res", "64x64", "--spp", "1000000", "--out", "build/tmp_fh_int.png"}, 1.0, 0.05);
+    std::remove("build/tmp/fh_int.png");
+    std::remove("build/tmp/fh_int.pfm");
+    InterruptedRun r = interruptRun({"scenes/cornell.scene", "--res", "64x64", "--spp", "1000000", "--out", "build/tmp/fh_int.png"}, 1.0, 0.05);
     CHECK(r.status == 130);
     CHECK(r.err.find("bdpt: interrupted: finishing the pass in flight, then writing the image (Ctrl-C again to abandon it)") != std::string::npos);
-    CHECK(fileExists("build/tmp_fh_int.png"));
-    CHECK(fileExists("build/tmp_fh_int.pfm"));
+    CHECK(fileExists("build/tmp/fh_int.png"));
+    CHECK(fileExists("build/tmp/fh_int.pfm"));
 }
 
 TEST_CASE("--live: the PNG is rewritten whole while rendering, and the log grows pass by pass") {
     // Killed (SIGKILL: nothing of bdpt runs after it) half-way through a long render: without
     // --live there would be no PNG; with it the last one written is there, whole (PNG signature
     // first, IEND chunk last), and the log holds the passes so far.
-    for (const char* f : {"build/tmp_fh_live.png", "build/tmp_fh_live.pfm", "build/tmp_fh_live.csv"}) std::remove(f);
+    for (const char* f : {"build/tmp/fh_live.png", "build/tmp/fh_live.pfm", "build/tmp/fh_live.csv"}) std::remove(f);
     auto [status, text] = shellRun("timeout -s KILL 2 ./bdpt scenes/cornell.scene --res 96x96 --spp 1000000 --live 0.2 "
-                                   "--log build/tmp_fh_live.csv --out build/tmp_fh_live.png");
+                                   "--log build/tmp/fh_live.csv --out build/tmp/fh_live.png");
     CHECK(status != 0);  // killed
-    std::string png = readFile("build/tmp_fh_live.png");
+    std::string png = readFile("build/tmp/fh_live.png");
     REQUIRE(png.size() > 100);
     CHECK(png.substr(1, 3) == "PNG");
     CHECK(png.substr(png.size() - 8, 4) == "IEND");
-    CHECK(!fileExists("build/tmp_fh_live.pfm"));  // the PFM is the finished image's only
-    std::istringstream log(readFile("build/tmp_fh_live.csv"));
+    CHECK(!fileExists("build/tmp/fh_live.pfm"));  // the PFM is the finished image's only
+    std::istringstream log(readFile("build/tmp/fh_live.csv"));
     int rows = 0;
     for (std::string line; std::getline(log, line);) rows += line.rfind("cornell,bdpt,", 0) == 0;
     CHECK(rows >= 10);
+}
+
+// A typo gets the word it probably meant; a file the project ships is not lost to a careless
+// --out; --ref says the final error without --log; a long render's ETA reads in hours.
+TEST_CASE("did you mean: a misspelt option, material or scene path gets the likely one") {
+    CHECK(contains(run({"scenes/furnace.scene", "--samples", "4"}).err, "unknown option '--samples' (did you mean --spp?)"));
+    CHECK(contains(run({"scenes/furnace.scene", "--heuristc", "max"}).err, "unknown option '--heuristc' (did you mean --heuristic?)"));
+    CHECK(run({"scenes/furnace.scene", "--zzzzzz"}).err == "bdpt: unknown option '--zzzzzz' (see --help)\n");  // nothing close: no guess
+    Run r = run({"furnace.scene", "--spp", "1"});
+    CHECK(r.status == 2);
+    CHECK(contains(r.err, "furnace.scene: cannot open the scene file: No such file or directory (did you mean scenes/furnace.scene?)"));
+    std::string scene = writeTempFile("typo.scene", "camera 0 1 -4 0 1 0 0 1 0 40 8 8\nmaterial white diffuse 0.5 0.5 0.5\n"
+                                                     "quad 0 0 0 1 0 0 0 0 1 whte emit 1 1 1\n");
+    CHECK(run({scene}).err == scene + ":3: unknown material 'whte' (did you mean 'white'?)\n");
+}
+
+TEST_CASE("--out replaces a file the project ships (under scenes/ or lecture_notes/) only with --overwrite") {
+    mkdir("build/tmp/scenes", 0777);
+    std::string shipped = writeTempFile("scenes/shipped.png", "a committed figure");
+    Run r = run({"scenes/furnace.scene", "--res", "8x8", "--spp", "1", "--out", shipped});
+    CHECK(r.status == 1);
+    CHECK(contains(r.err, "will not overwrite build/tmp/scenes/shipped.png: the project ships it"));
+    CHECK(readFile(shipped) == "a committed figure");
+    CHECK(run({"--average", "scenes/refs/furnace.pfm", "scenes/refs/furnace.pfm", "--out", shipped}).status == 1);
+    CHECK(readFile(shipped) == "a committed figure");
+    CHECK(run({"scenes/furnace.scene", "--res", "8x8", "--spp", "1", "--out", shipped, "--overwrite"}).status == 0);
+    CHECK(readFile(shipped) != "a committed figure");
+    CHECK(run({"scenes/furnace.scene", "--res", "8x8", "--spp", "1", "--out", "build/tmp/fresh.png"}).status == 0);  // elsewhere: as always
+}
+
+TEST_CASE("--ref without --log: the summary says the final error; ETAs in hours and minutes") {
+    Image ref;
+    REQUIRE(readPFM("scenes/refs/furnace.pfm", ref));
+    std::string size = std::to_string(ref.width) + "x" + std::to_string(ref.height);
+    Run r = run({"scenes/furnace.scene", "--res", size, "--spp", "2", "--ref", "scenes/refs/furnace.pfm", "--out", "build/tmp/ref.png"});
+    CHECK(r.status == 0);
+    CHECK(contains(r.out, "against scenes/refs/furnace.pfm: rmse "));
+    CHECK(contains(r.out, "bias "));
+    CHECK(duration(48028.9) == "13 h 20 min");
+    CHECK(duration(245) == "4 min 05 s");
+    CHECK(duration(12.34) == "12.3 s");
 }

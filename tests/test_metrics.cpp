@@ -36,42 +36,42 @@ TEST_CASE("metrics on synthetic images with known answers") {
     CHECK(!nearLamp(lampRef, 5, 2));
 }
 
-// `bdpt OPTION A.pfm B.pfm --out build/tmp_NAME.png` on two images written for it; the PFM it
+// `bdpt OPTION A.pfm B.pfm --out build/tmp/NAME.png` on two images written for it; the PFM it
 // writes is read back into result.
 static int twoImageCommand(const std::string& option, const Image& a, const Image& b, const std::string& name, Image& result,
                            std::ostringstream& so) {
-    std::string pa = "build/tmp_" + name + "_a.pfm", pb = "build/tmp_" + name + "_b.pfm";
+    std::string pa = "build/tmp/" + name + "_a.pfm", pb = "build/tmp/" + name + "_b.pfm";
     REQUIRE(writePFM(a, pa));
     REQUIRE(writePFM(b, pb));
     std::ostringstream se;
-    int status = runCommandLine({option, pa, pb, "--out", "build/tmp_" + name + ".png"}, so, se);
-    if (status == 0) REQUIRE(readPFM("build/tmp_" + name + ".pfm", result));
+    int status = runCommandLine({option, pa, pb, "--out", "build/tmp/" + name + ".png"}, so, se);
+    if (status == 0) REQUIRE(readPFM("build/tmp/" + name + ".pfm", result));
     return status;
 }
 
 TEST_CASE("--average: the mean of two references, and refusal of images of different sizes") {
     Image one = constantImage(6, 4, 1), three = constantImage(6, 4, 3), small = constantImage(4, 4, 1);
     three.at(5, 3) = Vec3(7, 9, 11);  // a corner, to see the rows are not flipped
-    REQUIRE(writePFM(small, "build/tmp_avg_small.pfm"));
+    REQUIRE(writePFM(small, "build/tmp/avg_small.pfm"));
     std::ostringstream so, se;
     Image mean;
     CHECK(twoImageCommand("--average", one, three, "avg", mean, so) == 0);
     CHECK(mean.width == 6);
     CHECK(mean.at(0, 0).y == 2.0f);
     CHECK(mean.at(5, 3).z == 6.0f);
-    CHECK(fileExists("build/tmp_avg.png"));
-    CHECK(so.str().find("wrote build/tmp_avg.png and build/tmp_avg.pfm") != std::string::npos);
-    CHECK(runCommandLine({"--average", "build/tmp_avg_a.pfm", "build/tmp_avg_small.pfm", "--out", "build/tmp_avg2.png"}, so, se) == 2);
-    CHECK(!fileExists("build/tmp_avg2.pfm"));
+    CHECK(fileExists("build/tmp/avg.png"));
+    CHECK(so.str().find("wrote build/tmp/avg.png and build/tmp/avg.pfm") != std::string::npos);
+    CHECK(runCommandLine({"--average", "build/tmp/avg_a.pfm", "build/tmp/avg_small.pfm", "--out", "build/tmp/avg2.png"}, so, se) == 2);
+    CHECK(!fileExists("build/tmp/avg2.pfm"));
     // Each refusal names the input and what is wrong with it.
-    CHECK(se.str().find("cannot average: build/tmp_avg_a.pfm is 6x4, build/tmp_avg_small.pfm is 4x4") != std::string::npos);
+    CHECK(se.str().find("cannot average: build/tmp/avg_a.pfm is 6x4, build/tmp/avg_small.pfm is 4x4") != std::string::npos);
     std::ostringstream se2, se3, se4;
-    CHECK(runCommandLine({"--average", "build/tmp_avg_a.pfm", "build/no_such.pfm", "--out", "build/tmp_avg2.png"}, so, se2) == 2);
+    CHECK(runCommandLine({"--average", "build/tmp/avg_a.pfm", "build/no_such.pfm", "--out", "build/tmp/avg2.png"}, so, se2) == 2);
     CHECK(se2.str().find("build/no_such.pfm does not exist") != std::string::npos);
-    CHECK(runCommandLine({"--compare", "build/tmp_avg_a.pfm", "Makefile"}, so, se3) == 2);
+    CHECK(runCommandLine({"--compare", "build/tmp/avg_a.pfm", "Makefile"}, so, se3) == 2);
     CHECK(se3.str().find("cannot compare: Makefile is not a PFM image") != std::string::npos);
     // Without --out an image-writing command refuses instead of writing over render.png.
-    CHECK(runCommandLine({"--ratio", "build/tmp_avg_a.pfm", "build/tmp_avg_b.pfm"}, so, se4) == 2);
+    CHECK(runCommandLine({"--ratio", "build/tmp/avg_a.pfm", "build/tmp/avg_b.pfm"}, so, se4) == 2);
     CHECK(se4.str().find("--ratio writes an image: name it with --out FILE.png") != std::string::npos);
 }
 
@@ -93,16 +93,16 @@ TEST_CASE("--ratio: A/B over 4x4 blocks, in false colour, with its percentiles")
     CHECK(colours.at(0, 0).y == 0.0f);             // one stop brighter: full red
     CHECK(colours.at(5, 5).y == 1.0f);             // equal: white
     CHECK(so.str().find("% of the blocks more than half a stop apart") != std::string::npos);
-    CHECK(so.str().find("wrote build/tmp_ratio.png and build/tmp_ratio.pfm") != std::string::npos);
+    CHECK(so.str().find("wrote build/tmp/ratio.png and build/tmp/ratio.pfm") != std::string::npos);
     // Against an all-black image every block is undefined: said so, not "0% apart".
     std::ostringstream so2;
     Image unused;
     CHECK(twoImageCommand("--ratio", a, constantImage(8, 8, 0), "ratio_black", unused, so2) == 2);
-    CHECK(!fileExists("build/tmp_ratio_black.png"));
+    CHECK(!fileExists("build/tmp/ratio_black.png"));
 }
 
 TEST_CASE("the failure table: slope of log(rmse) against log(time), last bias, fireflies and NaNs") {
-    std::ofstream a("build/tmp_converges.csv"), b("build/tmp_biased.csv");
+    std::ofstream a("build/tmp/converges.csv"), b("build/tmp/biased.csv");
     a << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count\n";
     b << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count\n";
     for (int p = 1; p <= 100; ++p) {
@@ -112,7 +112,7 @@ TEST_CASE("the failure table: slope of log(rmse) against log(time), last bias, f
     a.close();
     b.close();
     std::ostringstream out, err;
-    CHECK(printFailureTable({"build/tmp_converges.csv", "build/tmp_biased.csv"}, out, err) == 0);
+    CHECK(printFailureTable({"build/tmp/converges.csv", "build/tmp/biased.csv"}, out, err) == 0);
     CHECK(out.str().find("| x | nee | -0.50 | +0.1% | 7 | 0 |") != std::string::npos);
     CHECK(out.str().find("| x | ir --clamp 1 | 0.00 | -4.2% | 3 | 2 |") != std::string::npos);
     CHECK(printFailureTable({"build/no-such.csv"}, out, err) == 2);

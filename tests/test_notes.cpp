@@ -73,18 +73,18 @@ TEST_CASE("the notes cite only functions that bdpt.cpp defines") {
     CHECK(cited > 40);
 }
 
-// A shown command, made quick: 1 sample per pixel, 8x8 pixels, files into build/notes/.
+// A shown command, made quick: 1 sample per pixel, 8x8 pixels, files into build/tmp/notes/.
 static std::vector<std::string> quickArgs(const std::string& line) {
     std::istringstream in(line);
     std::vector<std::string> words, args;
     for (std::string w; in >> w;) words.push_back(w);
-    auto intoBuild = [](const std::string& path) { return "build/notes/" + path.substr(path.find_last_of('/') + 1); };
+    auto intoBuild = [](const std::string& path) { return "build/tmp/notes/" + path.substr(path.find_last_of('/') + 1); };
     for (size_t i = 1; i < words.size(); ++i) {
         const std::string& w = words[i];
         bool hasValue = i + 1 < words.size();
         if ((w == "--spp" || w == "--time" || w == "--res") && hasValue) { ++i; continue; }
         if ((w == "--out" || w == "--strategies") && hasValue) { args.push_back(w); args.push_back(intoBuild(words[++i])); continue; }
-        args.push_back(w);
+        args.push_back(w.rfind("build/", 0) == 0 ? intoBuild(w) : w);  // an earlier command's output, as an input
     }
     args.insert(args.end(), {"--spp", "1", "--res", "8x8", "--quiet"});
     return args;
@@ -118,7 +118,7 @@ TEST_CASE("the code the notes show is bdpt.cpp's, line for line") {
 }
 
 TEST_CASE("every command the notes show runs") {
-    std::system("mkdir -p build/notes");
+    std::system("mkdir -p build/tmp/notes");
     int commands = 0;
     for (const std::string& page : notePages()) {
         std::istringstream in(slurp(page));
@@ -358,8 +358,8 @@ TEST_CASE("every make target and every figure the notes mention exists") {
 }
 
 TEST_CASE("every method has its own colour and line style in the charts, the same in every chart") {
-    std::system("bash tests/charts.sh styles > build/tmp_styles.txt");
-    std::istringstream in(slurp("build/tmp_styles.txt"));
+    std::system("bash tests/charts.sh styles > build/tmp/styles.txt");
+    std::istringstream in(slurp("build/tmp/styles.txt"));
     std::set<std::string> styles, labels;
     for (std::string line; std::getline(in, line);) {
         labels.insert(line.substr(0, line.find(' ')));

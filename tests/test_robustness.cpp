@@ -5,7 +5,7 @@
 
 // Runs the command line on a bad scene: status 2, exactly the expected message, no file.
 static void expectRejected(const std::string& scene, const std::string& expected) {
-    const std::string out = "build/tmp_rejected.png";
+    const std::string out = "build/tmp/rejected.png";
     std::remove(out.c_str());
     std::ostringstream so, se;
     int status = runCommandLine({scene, "--out", out, "--spp", "1", "--quiet"}, so, se);
@@ -13,7 +13,7 @@ static void expectRejected(const std::string& scene, const std::string& expected
     CHECK(status == 2);
     CHECK(se.str() == expected);
     CHECK(!fileExists(out));
-    CHECK(!fileExists("build/tmp_rejected.pfm"));
+    CHECK(!fileExists("build/tmp/rejected.pfm"));
 }
 
 TEST_CASE("every file in tests/bad_scenes is rejected with its exact message, status 2 and no output") {
@@ -42,24 +42,24 @@ TEST_CASE("a 1 MB line is rejected like any other") {
 }
 
 TEST_CASE("Ctrl-C finishes the pass, writes the completed passes and exits 130; a second press leaves nothing") {
-    std::remove("build/tmp_int.png");
-    std::remove("build/tmp_int.pfm");
-    int status = interruptRun({"scenes/cornell.scene", "--res", "64x64", "--spp", "1000000", "--out", "build/tmp_int.png"}, 1.0, 0).status;
+    std::remove("build/tmp/int.png");
+    std::remove("build/tmp/int.pfm");
+    int status = interruptRun({"scenes/cornell.scene", "--res", "64x64", "--spp", "1000000", "--out", "build/tmp/int.png"}, 1.0, 0).status;
     CHECK(status == 130);
     Image img;
-    REQUIRE(readPFM("build/tmp_int.pfm", img));
+    REQUIRE(readPFM("build/tmp/int.pfm", img));
     CHECK(img.width == 64);
     CHECK(imageMean(img) == doctest::Approx(0.123).epsilon(0.1));  // a real image of the completed passes
-    CHECK(fileExists("build/tmp_int.png"));
+    CHECK(fileExists("build/tmp/int.png"));
     // A pass of a 2048x2048 image takes seconds: the second Ctrl-C, 1.2 s after the first (sooner
     // is the same press), lands inside the first pass.
-    std::remove("build/tmp_int2.png");
-    std::remove("build/tmp_int2.pfm");
-    InterruptedRun abandoned = interruptRun({"scenes/cornell.scene", "--res", "2048x2048", "--spp", "1000000", "--out", "build/tmp_int2.png"}, 0.8, 1.2);
+    std::remove("build/tmp/int2.png");
+    std::remove("build/tmp/int2.pfm");
+    InterruptedRun abandoned = interruptRun({"scenes/cornell.scene", "--res", "2048x2048", "--spp", "1000000", "--out", "build/tmp/int2.png"}, 0.8, 1.2);
     CHECK(abandoned.status == kExitAbandoned);
     CHECK(abandoned.err.find("bdpt: abandoned: no image written") != std::string::npos);
-    CHECK(!fileExists("build/tmp_int2.png"));
-    CHECK(!fileExists("build/tmp_int2.pfm"));
+    CHECK(!fileExists("build/tmp/int2.png"));
+    CHECK(!fileExists("build/tmp/int2.pfm"));
     DIR* dir = opendir("build");
     int temps = 0;
     for (dirent* e; (e = readdir(dir));) temps += std::string(e->d_name).find("tmp_int2.png.tmp") == 0;

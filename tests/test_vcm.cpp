@@ -227,7 +227,7 @@ TEST_CASE("vcm's MIS-weighted strategy and merge images add up to its image exac
     CHECK(merged > 0.1 * total);  // the merges take part
     CHECK(worst < 1e-4 * (1 + total / 144));
 
-    std::string dir = "build/tmp_vcm_strategies";
+    std::string dir = "build/tmp/vcm_strategies";
     std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str());
     std::ostringstream so, se;
     CHECK(runCommandLine({"scenes/cornell.scene", "--method", "vcm", "--res", "16x16", "--spp", "2", "--strategies", dir,

@@ -1,0 +1,46 @@
+// make test: every test file in one program, so that bdpt.cpp is compiled once. Each file keeps
+// its own namespace (their helpers may share names); what they include comes first, so that the
+// includes inside the namespaces find their guards set. `make test` runs this program once per
+// file (doctest's --source-file), one line each.
+#include "helpers.h"
+#include "bench.h"
+#include "densities.h"
+#include <dirent.h>
+#include <regex>
+
+namespace test_bdpt {
+#include "test_bdpt.cpp"
+}
+namespace test_bvh {
+#include "test_bvh.cpp"
+}
+namespace test_core {
+#include "test_core.cpp"
+}
+namespace test_first_hour {
+#include "test_first_hour.cpp"
+}
+namespace test_metrics {
+#include "test_metrics.cpp"
+}
+namespace test_mlt {
+#include "test_mlt.cpp"
+}
+namespace test_notes {
+#include "test_notes.cpp"
+}
+namespace test_numerics {
+#include "test_numerics.cpp"
+}
+namespace test_robustness {
+#include "test_robustness.cpp"
+}
+namespace test_sampling {
+#include "test_sampling.cpp"
+}
+namespace test_transport {
+#include "test_transport.cpp"
+}
+namespace test_vcm {
+#include "test_vcm.cpp"
+}

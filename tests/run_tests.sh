@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# make test's runner. The test program (all of tests/test_*.cpp in one, tests/all_tests.cpp) runs
+# once per test file (doctest's --source-file), and every other program given runs whole; each
+# prints one line: the file, what it checks (its first comment line), its test cases passed and
+# failed, and the seconds it took. A failing one's whole output follows its line; every output is
+# kept in build/NAME.log. The last line sums them: "tests: N passed, N failed".
+#   tests/run_tests.sh ALL_TESTS [PROGRAM ...]
+set -u
+all=$1
+shift
+passed=0 failed=0 status=0 start=$(date +%s)
+rm -rf build/tmp && mkdir -p build/tmp  # the tests' own files, removed at the end
+trap 'rm -rf build/tmp' EXIT
+line() {  # name, log, exit status, seconds, description
+  local counts p f
+  counts=$(grep -E "test cases:" "$2" | tail -n 1)
+  p=$(echo "$counts" | sed -E 's/.*\| *([0-9]+) passed.*/\1/;t;s/.*/0/')
+  f=$(echo "$counts" | sed -E 's/.*\| *([0-9]+) failed.*/\1/;t;s/.*/1/')
+  [ "$3" -eq 0 ] && [ "$f" -eq 0 ] && [ "$p" -gt 0 ] || { status=1; [ "$f" -gt 0 ] || f=1; }
+  passed=$((passed + p)); failed=$((failed + f))
+  printf '%-22s %3d passed %2d failed %5s s  %s\n' "$1" "$p" "$f" "$4" "$5"
+  if [ "$f" -gt 0 ]; then sed 's/^/    /' "$2"; fi
+}
+run() {  # name, log, description, command...
+  local name=$1 log=$2 description=$3 t0 rc
+  shift 3
+  t0=$(date +%s.%N)
+  "$@" --reporters=notes > "$log" 2>&1
+  rc=$?
+  line "$name" "$log" "$rc" "$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')" "$description"
+}
+for file in tests/test_*.cpp; do
+  name=$(basename "$file" .cpp)
+  description=$(sed -n "s/^$name //p" <<'TABLE'
+test_bdpt bdpt: MIS weights, specular chains, strategy images
+test_bvh the BVH against the brute-force loop
+test_core hits, BSDFs, the furnace, options, bad input
+test_first_hour a first hour's mistakes, each with its message
+test_metrics error metrics, --ratio, the failure table
+test_mlt Metropolis: the sampler, steps, regions over seeds
+test_notes the notes: citations, commands, formulas, numbers
+test_numerics ray offsets, scales, film coordinates, MIS ranges
+test_robustness malformed scenes, Ctrl-C, numerical edge cases
+test_sampling chi-square of every sampling routine
+test_transport lt, ir, refraction, shading normals, clamp, nee --mis
+test_vcm vcm: the hash grid, merges, the radius schedule
+TABLE
+)
+  [ -n "$description" ] || description=$(head -n 1 "$file" | sed -E 's|^// *||' | cut -c1-60)
+  run "$name" "build/$name.log" "$description" "$all" --source-file="*$file"
+done
+for program in "$@"; do
+  run "$program" "$program.log" "the same tests, built as $(basename "$(dirname "$program")")" "$program"
+done
+printf 'tests: %d passed, %d failed (%d s)\n' "$passed" "$failed" "$(( $(date +%s) - start ))"
+exit $status
