@@ -971,8 +971,11 @@ inline void setResolution(Camera& cam, int width, int height) {
 // == 7. Integrators ============================================================================
 // Slides "Path sampling techniques" and "Results from different techniques": panels (a) to (f),
 // then (g) "Vertex Connection and Merging (VCM, later)" and (h) "Metropolis-Sampling (see
-// later)". Every method is one function of the same shape over the shared pieces above, so that
-// a diff of two methods shows how they differ.
+// later)". Every method is one function of the same shape over the shared pieces above,
+//     Vec3 sampleXX(scene, options, pass data, pixel x, pixel y, the pixel's Rng, row output):
+// one sample of pixel (x, y), what its camera path brings back returned, what its light paths
+// bring to other pixels splatted; a diff of two methods shows how they differ. ir, vcm and the
+// Metropolis methods first prepare what the whole pass shares (section 8's preparePass).
 // Paths are counted in bounces (scattering vertices): a path of k segments has k-1 bounces, and
 // --maxdepth D keeps paths with at most D bounces.
 enum class Method { PT, NEE, LT, IR, BDPT, VCM, MLT, MMLT };
@@ -1328,7 +1331,7 @@ inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Ve
             if (!(rng.uniform() < v.continuation)) return;
             beta = beta / v.continuation;
         } else if (opt.roulette == Roulette::Throughput && !russianRoulette(beta, start, bounces, opt, rng)) {
-            return;  // bounces so far, as in radianceNEE
+            return;  // bounces so far, as in sampleNEE
         }
         ray = spawnRay(v.sp, bs.wi);
     }
