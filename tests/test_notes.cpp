@@ -497,6 +497,7 @@ TEST_CASE("the slopes and biases the pages quote are the failure table's (make f
                  std::to_string(int(std::lround(std::stod(firefly("ir")) / std::stod(firefly("pt"))))) + " times as large (" + firefly("ir") + ", " +
                  firefly("bdpt balance") + " and " + firefly("nee") + ")"},
         {&a, "from " + bias("cornell-glass", "ir") + ", ir on cornell-glass, to " + bias("refraction", "ir") + ", ir on refraction"},
+        {&a, "vcm on `door` (" + bias("door", "vcm") + " in the table, slope " + slope("door", "vcm") + " while the noise"},
     };
     for (const auto& [page, quote] : quotes) {
         CAPTURE(quote);
@@ -536,4 +537,21 @@ TEST_CASE("page 10's four paths: the numbers its text quotes are the densities' 
         CAPTURE(quote);
         CHECK(p10.find(quote) != std::string::npos);
     }
+}
+
+// The pages speak of the renderer, not of how it was made: no issue numbers, no sessions, no
+// "we tried", no machine of the project's own (the git log keeps the history).
+TEST_CASE("no development history in the pages or the README") {
+    std::vector<std::string> files = notePages();
+    files.push_back("README.md");
+    std::regex history("\\b[Ii]ssues? [0-9]+|\\bsessions?\\b|\\bwe tried\\b|\\(Issues?:|this project's [0-9]-core");
+    for (const std::string& file : files) {
+        std::string text = flatPage(file.rfind("lecture_notes/", 0) == 0 ? file.substr(14) : "../" + file);
+        std::smatch m;
+        std::string found = std::regex_search(text, m, history) ? m.str() : "";
+        CAPTURE(file);
+        CAPTURE(found);
+        CHECK(found.empty());
+    }
+    CHECK(std::regex_search(std::string("fixed in issue 24"), history));  // the pattern catches what it should
 }
