@@ -432,7 +432,9 @@ TEST_CASE("the efficiencies the pages quote are the generated table's (make figu
         {&a, "a mutation costs " + ratio("%.1fx", "door", "mlt", "bdpt", cpu) + " a bdpt sample there"},
         {&a, col("door", "mlt", rays) + " rays per sample against " + col("door", "bdpt", rays)},
     };
-    CHECK(col("door", "mlt", mse) == col("door", "bdpt", mse));  // "its MSE equals bdpt's"
+    // "its MSE is about bdpt's": within a factor 1.5 either way (single seeds differ 2x)
+    CHECK(quotient("door", "mlt", "bdpt", mse) < 1.5);
+    CHECK(quotient("door", "mlt", "bdpt", mse) > 1 / 1.5);
     // page 16: glass-box's ratio lies between cornell's and cornell-glass's, the range it quotes
     double glassBox = quotient("glass-box", "mmlt", "mlt", mse);
     CHECK(glassBox >= quotient("cornell", "mmlt", "mlt", mse));
