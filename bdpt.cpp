@@ -3376,8 +3376,8 @@ inline const std::vector<OptionSpec> kOptions = {
      "PFM holds the ratios) and print its percentiles: where two methods differ",
      [](CL& cl, A& a) { cl.ratio = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
     {"--failure-table", "LOG.csv...", {}, "",
-     "print the README's failure table (markdown) from such logs:\n"
-     "slope of log(rmse) against log(seconds), bias, fireflies, NaN count",
+     "print the failure table (markdown, as Appendix A of the notes has it) from\n"
+     "such logs: slope of log(rmse) against log(seconds), bias, fireflies, NaN count",
      [](CL& cl, A& a) {
          cl.failureLogs.assign(a.args.begin() + a.i + 1, a.args.end());
          if (cl.failureLogs.empty()) a.fail("--failure-table needs log files");
