@@ -3854,6 +3854,8 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     const std::string pfm = replaceExtension(cl.out, ".pfm");
     Image ref;
     if (int status = checkBeforeRendering(cl, scene, pfm, ref, err)) return status;
+    if (cl.liveSeconds > 0)  // a first frame at once: a viewer opens it, and never shows an older run's image
+        writePNG(Image(scene.camera.width, scene.camera.height), cl.out, 0);
     warnAboutScene(scene, cl.opt, err);
     if (!cl.exposureGiven) cl.opt.exposure = scene.exposure;
     scene.conventions = cl.conventions;

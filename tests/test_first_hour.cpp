@@ -289,3 +289,16 @@ TEST_CASE("--ref without --log: the summary says the final error; ETAs in hours 
     CHECK(duration(245) == "4 min 05 s");
     CHECK(duration(12.34) == "12.3 s");
 }
+
+// A projector's viewer opens the file as soon as the command starts: mlt's bootstrap, a few
+// seconds, must not leave it showing an older run's image or nothing at all.
+TEST_CASE("--live writes a first frame at once, before mlt's bootstrap ends") {
+    writeTempFile("fh_first.png", "an older run's image");
+    auto [status, text] = shellRun("timeout -s KILL 2 ./bdpt scenes/door.scene --method mlt --bootstrap 10000000 --res 64x48 "
+                                   "--time 60 --live 1 --out build/tmp/fh_first.png");
+    CHECK(status != 0);  // killed during the bootstrap
+    int w = 0, h = 0, channels = 0;
+    CHECK(stbi_info("build/tmp/fh_first.png", &w, &h, &channels) == 1);
+    CHECK(w == 64);
+    CHECK(h == 48);
+}
