@@ -2445,8 +2445,7 @@ inline PassData preparePass(const Scene& scene, const RenderOptions& opt, int pa
     return data;
 }
 
-// Every method has one shape: a sample of pixel (x, y) from the pixel's own random stream, what
-// its camera path brings back to the pixel returned, what lands elsewhere (light paths) splatted.
+// Each method's sampleXX, all of the one shape section 7's banner gives.
 using SampleFunction = Vec3 (*)(const Scene&, const RenderOptions&, const PassData&, int x, int y, Rng&, RowOutput&);
 inline SampleFunction sampleFunction(Method m) {
     switch (m) {

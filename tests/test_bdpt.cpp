@@ -176,77 +176,6 @@ static float mergeWeightInPath(const Scene& scene, Heuristic h, double mergeEta,
     return largest > 0 ? (c.x == largest ? cw.x : c.y == largest ? cw.y : cw.z) / largest : -1;  // -1: c underflowed
 }
 
-// mergeEta > 0: vcm's weights, where a merge at every non-specular vertex x_i (0 < i < n-1) is
-// one more strategy, of density p_i * mergeEta * p_light(x_i) (the keys 1000 + i below).
-static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, uint64_t seed, Roulette roulette = RenderOptions().roulette,
-                                double mergeEta = 0) {
-    RenderOptions opt = quietOptions(Method::BDPT, 1, seed);
-    opt.maxDepth = 6;
-    opt.heuristic = h;
-    opt.roulette = roulette;
-    WeightCheck wc;
-    std::vector<PathVertex> camera, light, y, z;
-    for (int i = 0; i < samples; ++i) {
-        Rng rng = makeRng(seed, uint64_t(i), 7);
-        cameraSubpath(scene, opt, rng.uniform() * scene.camera.width, rng.uniform() * scene.camera.height, rng, camera);
-        lightSubpath(scene, opt, rng, light);
-        for (int t = 1; t <= int(camera.size()); ++t)
-            for (int s = 0; s <= int(light.size()); ++s) {
-                if (s + t < 3 || s + t - 2 > opt.maxDepth) continue;  // k >= 2: more than one strategy
-                int pixel = 0;
-                Connection connection;
-                if (isBlack(connectStrategy(scene, light, s, camera, t, connection, pixel))) continue;
-                std::vector<PathVertex> x = joinPath(light, s, camera, t);
-                double sum = 0;
-                std::map<int, double> density, weight;
-                for (int s2 = 0; s2 < int(x.size()); ++s2) {
-                    if (!able(scene, x, s2)) continue;
-                    rebuild(scene, x, s2, y, z);
-                    int t2 = int(x.size()) - s2;
-                    Connection c2;  // what connectStrategy would have evaluated for (s2, t2)
-                    if (s2 > 0) evalConnection(scene, y[s2 - 1], z[t2 - 1], c2);
-                    float w = misWeight(scene, y, s2, z, t2, h, c2, mergeEta);
-                    density[s2] = pathDensity(scene, x, s2, roulette);
-                    weight[s2] = w;
-                    sum += w;
-                    if (s2 == s) {  // the rebuilt subpaths give the weight the sample got
-                        float w0 = misWeight(scene, light, s, camera, t, h, connection, mergeEta);
-                        wc.worstRebuild = std::max(wc.worstRebuild, double(std::fabs(w - w0)));
-                    }
-                }
-                for (int i = 1; mergeEta > 0 && i + 1 < int(x.size()); ++i) {
-                    if (specularAt(scene, x[i])) continue;
-                    std::vector<PathVertex> yMerge, zMerge, unused;
-                    rebuild(scene, x, i + 1, yMerge, unused);  // the light subpath x_0..x_i
-                    rebuild(scene, x, i, unused, zMerge);      // the camera subpath x_{n-1}..x_i
-                    int t2 = int(x.size()) - i;
-                    const PathVertex& xi = zMerge[t2 - 1];
-                    float pdf, pdfReverse;
-                    if (isBlack(evalBsdf(scene, xi.sp, xi.wo, yMerge[i].wo, Transport::Radiance, pdf, pdfReverse))) continue;
-                    VcmPass::Stored record = storedVertex(yMerge, i, 0, 0);
-                    std::vector<MisVertex> yMis(yMerge.begin(), yMerge.end());
-                    float w = mergeWeightInPath(scene, h, mergeEta, yMerge, i, zMerge);
-                    float wWalked = mergeWeight(scene, yMerge, yMis.data(), record, zMerge, t2, h, mergeEta, pdf, pdfReverse);
-                    if (w < 0) w = wWalked, ++wc.mergesUnderflowed;  // a glossy lobe's f of 1e-30: nothing to splat
-                    wc.worstMergeWalk = std::max(wc.worstMergeWalk, double(std::fabs(w - wWalked)));
-                    density[1000 + i] = subpathDensity(scene, x, 0, i, roulette) * subpathDensity(scene, x, int(x.size()) - 1, i, roulette) * mergeEta;
-                    weight[1000 + i] = w;
-                    sum += w;
-                    wc.mergeShare += w;
-                    ++wc.merges;
-                }
-                wc.worstSum = std::max(wc.worstSum, std::fabs(sum - 1));
-                for (auto [s2, w] : weight) wc.worstDefinition = std::max(wc.worstDefinition, std::fabs(w - definitionWeight(h, density, s2)));
-                ++wc.paths;
-                ++wc.lengths[int(x.size()) - 1];
-            }
-    }
-    if (wc.paths > 0) wc.mergeShare /= wc.paths;
-    return wc;
-}
-
-static Scene smallScene(const std::string& file) { return sceneAt(file, 16, 16); }
-
 // fn(light, s, camera, t, connection, C) for every strategy of at least minVertices vertices that
 // connects, over `samples` random pairs of subpaths (random stream `stream` of `seed`).
 template <class Fn>
@@ -267,6 +196,69 @@ static void forEachConnectedStrategy(const Scene& scene, const RenderOptions& op
             }
     }
 }
+
+// mergeEta > 0: vcm's weights, where a merge at every non-specular vertex x_i (0 < i < n-1) is
+// one more strategy, of density p_i * mergeEta * p_light(x_i) (the keys 1000 + i below).
+static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, uint64_t seed, Roulette roulette = RenderOptions().roulette,
+                                double mergeEta = 0) {
+    RenderOptions opt = quietOptions(Method::BDPT, 1, seed);
+    opt.maxDepth = 6;
+    opt.heuristic = h;
+    opt.roulette = roulette;
+    WeightCheck wc;
+    std::vector<PathVertex> y, z;
+    // k >= 2: more than one strategy
+    forEachConnectedStrategy(scene, opt, samples, seed, 7, 3, [&](const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
+                                                                  int t, const Connection& connection, Vec3) {
+        std::vector<PathVertex> x = joinPath(light, s, camera, t);
+        double sum = 0;
+        std::map<int, double> density, weight;
+        for (int s2 = 0; s2 < int(x.size()); ++s2) {
+            if (!able(scene, x, s2)) continue;
+            rebuild(scene, x, s2, y, z);
+            int t2 = int(x.size()) - s2;
+            Connection c2;  // what connectStrategy would have evaluated for (s2, t2)
+            if (s2 > 0) evalConnection(scene, y[s2 - 1], z[t2 - 1], c2);
+            float w = misWeight(scene, y, s2, z, t2, h, c2, mergeEta);
+            density[s2] = pathDensity(scene, x, s2, roulette);
+            weight[s2] = w;
+            sum += w;
+            if (s2 == s) {  // the rebuilt subpaths give the weight the sample got
+                float w0 = misWeight(scene, light, s, camera, t, h, connection, mergeEta);
+                wc.worstRebuild = std::max(wc.worstRebuild, double(std::fabs(w - w0)));
+            }
+        }
+        for (int i = 1; mergeEta > 0 && i + 1 < int(x.size()); ++i) {
+            if (specularAt(scene, x[i])) continue;
+            std::vector<PathVertex> yMerge, zMerge, unused;
+            rebuild(scene, x, i + 1, yMerge, unused);  // the light subpath x_0..x_i
+            rebuild(scene, x, i, unused, zMerge);      // the camera subpath x_{n-1}..x_i
+            int t2 = int(x.size()) - i;
+            const PathVertex& xi = zMerge[t2 - 1];
+            float pdf, pdfReverse;
+            if (isBlack(evalBsdf(scene, xi.sp, xi.wo, yMerge[i].wo, Transport::Radiance, pdf, pdfReverse))) continue;
+            VcmPass::Stored record = storedVertex(yMerge, i, 0, 0);
+            std::vector<MisVertex> yMis(yMerge.begin(), yMerge.end());
+            float w = mergeWeightInPath(scene, h, mergeEta, yMerge, i, zMerge);
+            float wWalked = mergeWeight(scene, yMerge, yMis.data(), record, zMerge, t2, h, mergeEta, pdf, pdfReverse);
+            if (w < 0) w = wWalked, ++wc.mergesUnderflowed;  // a glossy lobe's f of 1e-30: nothing to splat
+            wc.worstMergeWalk = std::max(wc.worstMergeWalk, double(std::fabs(w - wWalked)));
+            density[1000 + i] = subpathDensity(scene, x, 0, i, roulette) * subpathDensity(scene, x, int(x.size()) - 1, i, roulette) * mergeEta;
+            weight[1000 + i] = w;
+            sum += w;
+            wc.mergeShare += w;
+            ++wc.merges;
+        }
+        wc.worstSum = std::max(wc.worstSum, std::fabs(sum - 1));
+        for (auto [s2, w] : weight) wc.worstDefinition = std::max(wc.worstDefinition, std::fabs(w - definitionWeight(h, density, s2)));
+        ++wc.paths;
+        ++wc.lengths[int(x.size()) - 1];
+    });
+    if (wc.paths > 0) wc.mergeShare /= wc.paths;
+    return wc;
+}
+
+static Scene smallScene(const std::string& file) { return sceneAt(file, 16, 16); }
 
 // The slides' "Implementation: Example: Maximums Heuristics" as a reference implementation: every
 // strategy's sample SP adds SP.f / p with p = max over estimators of Probability(SP, estimator),
