@@ -66,7 +66,7 @@ test: bdpt build/all_tests build/native/test_bvh build/scalar/test_bvh
 # rewrites the committed figures and tables of lecture_notes/ (NOTES=1); make refs rewrites the
 # committed references in scenes/refs/. make help lists them with their durations.
 refs: bdpt
-	@echo "make refs: rewrites scenes/refs/ (committed), 2 seeds x 90 s per scene: about 40 minutes"
+	@echo "make refs: rewrites scenes/refs/ (committed), 2 seeds x 90 s per scene (door-hidden 2 x 27 min): about 95 minutes"
 	+tests/charts.sh refs
 
 charts: bdpt
@@ -80,6 +80,12 @@ panels: bdpt
 efficiency: bdpt
 	+tests/charts.sh efficiency
 
+# The Metropolis methods against bdpt where they should win (door-hidden) and lose (cornell), 8
+# seeds, at 64x64 with 1,024 and 128x128 with 256 mutations per pixel: build/metropolis.md
+# (NOTES=1: also page 17's table).
+metropolis: bdpt
+	+tests/charts.sh metropolisTable
+
 figures: bdpt build/estimators
 	@echo "make figures: rewrites lecture_notes/figures/ and the tables in the pages (committed): about 35 minutes"
 	+NOTES=1 tests/charts.sh charts
@@ -92,13 +98,14 @@ help:
 	@echo "make run        render scenes/cornell.scene into build/cornell.png (seconds)"
 	@echo "make test       every test file, one line each (about 3 minutes on 2 cores); make test-sanitize (about 11)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
-	@echo "make uneven     bdpt, mlt and mmlt per region on the door: build/uneven-door.png (about 1 minute)"
-	@echo "make charts     error against time, every method and scene, 1.5 s a run: build/charts/ (about 4 minutes)"
+	@echo "make uneven     bdpt, mlt, pssmlt and mmlt per region on the door: build/uneven-door.png (about 1 minute)"
+	@echo "make charts     error against time, every method and scene, 1.5 s a run: build/charts/ (about 5 minutes)"
 	@echo "make efficiency 1/(MSE x CPU-s) of every method, 64 samples, 2 seeds: build/efficiency.md (about 2 minutes)"
+	@echo "make metropolis mlt, pssmlt and mmlt against bdpt, 8 seeds, two sizes: build/metropolis.md (about 45 minutes)"
 	@echo "make bench      our BVH against Embree, cost per sample: printed only (about 3 minutes)"
-	@echo "                FULL=1 after charts, efficiency or bench: the notes' budgets (11, 12 and 15 minutes)"
+	@echo "                FULL=1 after charts, efficiency or bench: the notes' budgets (12, 12 and 15 minutes)"
 	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 35 minutes)"
-	@echo "make refs       REWRITES the committed references in scenes/refs/ (about 40 minutes)"
+	@echo "make refs       REWRITES the committed references in scenes/refs/ (about 95 minutes)"
 	@echo "make fuzz       the scene parser under libFuzzer for FUZZ_SECONDS (60); make clean"
 
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it too).
@@ -148,16 +155,16 @@ build/estimators: tests/estimators.cpp tests/bench.h tests/densities.h bdpt.cpp 
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
-# Uneven convergence (tests/uneven.cpp): bdpt, mlt and mmlt per region on the door scene at
+# Uneven convergence (tests/uneven.cpp): bdpt, mlt, pssmlt and mmlt per region on the door scene at
 # equal time, into build/ (make figures puts its figure into the notes).
 build/uneven: tests/uneven.cpp tests/bench.h bdpt.cpp build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 uneven: build/uneven
-	@echo "make uneven: bdpt, mlt and mmlt, 8 seeds x 2 s each on one thread: about 1 minute, into build/"
+	@echo "make uneven: bdpt, mlt, pssmlt and mmlt, 8 seeds x 2 s each on one thread: about 1 minute, into build/"
 	./build/uneven $(UNEVEN_ARGS)
 
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize fuzz bench efficiency uneven refs charts panels figures help clean FORCE
+.PHONY: all run test test-sanitize fuzz bench efficiency metropolis uneven refs charts panels figures help clean FORCE

@@ -27,6 +27,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <set>
 #include <sstream>
 #include <string>
@@ -87,7 +88,7 @@ struct PrimaryStream;
 float replayUniform(PrimaryStream& stream);
 struct Rng {
     uint64_t state = 0, inc = 1;
-    PrimaryStream* replay = nullptr;  // mlt: numbers come from this state (and are recorded there)
+    PrimaryStream* replay = nullptr;  // pssmlt, mmlt: numbers come from this state (and are recorded there)
     uint32_t nextUint() {
         uint64_t old = state;
         state = old * 6364136223846793005ULL + inc;
@@ -761,6 +762,48 @@ inline Vec3 evalBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 w
     return m.albedo * (f * cosI * adjointCorrection(scene, sp, wo, wi, mode));
 }
 
+// A mirror's or smooth dielectric's probability of reflecting light that arrives along wo (F, or 1
+// for a mirror); sampleBsdf reflects with it and refracts otherwise.
+inline float specularReflectance(const Scene& scene, const SurfacePoint& sp, Vec3 wo) {
+    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    if (m.type == Material::Mirror) return 1;
+    bool entering = dot(wo, sp.ng) > 0;  // the front side (ng) is outside, ior 1
+    return fresnelDielectric(dot(wo, facingShadingNormal(sp, wo)), entering ? 1 / m.ior : m.ior);
+}
+
+// The delta lobe of a mirror or glass: reflection or (glass) refraction of wo. pdf is the lobe's
+// discrete probability (F or 1-F), weight (f cos / delta) / pdf. Veach's perturbations (section
+// (h)) call it to carry a path through the component it had.
+inline bool specularScatter(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Transport mode, bool refract, BsdfSample& bs) {
+    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    Vec3 n = facingShadingNormal(sp, wo);
+    bs.delta = true;
+    float cosO = dot(wo, n);
+    if (cosO <= 0 || (refract && m.type == Material::Mirror)) return false;
+    float F = specularReflectance(scene, sp, wo);
+    if (!refract) {
+        bs.wi = reflect(wo, n);
+        bs.pdf = F;
+        bs.weight = (m.type == Material::Mirror ? m.albedo : Vec3(1)) * adjointCorrection(scene, sp, wo, bs.wi, mode);
+        return bs.pdf > 0 && dot(bs.wi, sp.ng) * dot(wo, sp.ng) > 0;
+    }
+    // Smooth dielectric: reflect with probability F, refract with 1-F, so weight = 1 (x eta rule).
+    bool entering = dot(wo, sp.ng) > 0;
+    // eta_o on wo's side, eta_i on wi's: in radiance transport light arrives along wi, so these are
+    // the slides' eta_t (transmitted) and eta_i (incident) of "Power versus Radiance".
+    float etaO = entering ? 1 : m.ior, etaI = entering ? m.ior : 1, eta = etaO / etaI;
+    float cosT = std::sqrt(std::max(0.0f, 1 - eta * eta * (1 - cosO * cosO)));
+    bs.wi = normalize(-eta * wo + (eta * cosO - cosT) * n);
+    bs.pdf = 1 - F;
+    // Radiance flows wi -> wo: L_wo = (etaO/etaI)^2 L_wi. Importance carries no such factor.
+    float etaScale = mode == Transport::Radiance ? sqr(etaO / etaI) : 1;
+    // The deliberate mistake swaps the rules: eye tracing scales like power (as smallpt), particles
+    // scale like radiance (a light tracer that reuses the radiance BTDF).
+    if (scene.conventions.symmetricRefraction) etaScale = mode == Transport::Radiance ? 1 : sqr(etaI / etaO);
+    bs.weight = Vec3(etaScale * adjointCorrection(scene, sp, wo, bs.wi, mode));
+    return bs.pdf > 0 && dot(bs.wi, sp.ng) * dot(wo, sp.ng) < 0;
+}
+
 inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Transport mode, Rng& rng, BsdfSample& bs) {
     const Material& m = scene.materials[scene.shapes[sp.shape].material];
     Vec3 n = facingShadingNormal(sp, wo);
@@ -777,35 +820,8 @@ inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Tran
         bs.weight = f / bs.pdf;
         return !isBlack(bs.weight);
     }
-    if (m.type == Material::Mirror) {
-        bs.wi = reflect(wo, n);
-        bs.pdf = 1;
-        bs.weight = m.albedo * adjointCorrection(scene, sp, wo, bs.wi, mode);
-        return dot(bs.wi, sp.ng) * dot(wo, sp.ng) > 0;
-    }
-    // Smooth dielectric: reflect with probability F, refract with 1-F, so weight = 1 (x eta rule).
-    bool entering = dot(wo, sp.ng) > 0;  // the front side (ng) is outside, ior 1
-    // eta_o on wo's side, eta_i on wi's: in radiance transport light arrives along wi, so these are
-    // the slides' eta_t (transmitted) and eta_i (incident) of "Power versus Radiance".
-    float etaO = entering ? 1 : m.ior, etaI = entering ? m.ior : 1, eta = etaO / etaI;
-    float cosO = dot(wo, n);
-    float F = fresnelDielectric(cosO, eta);
-    if (u1 < F) {
-        bs.wi = reflect(wo, n);
-        bs.pdf = F;
-        bs.weight = Vec3(adjointCorrection(scene, sp, wo, bs.wi, mode));
-        return dot(bs.wi, sp.ng) * dot(wo, sp.ng) > 0;
-    }
-    float cosT = std::sqrt(std::max(0.0f, 1 - eta * eta * (1 - cosO * cosO)));
-    bs.wi = normalize(-eta * wo + (eta * cosO - cosT) * n);
-    bs.pdf = 1 - F;
-    // Radiance flows wi -> wo: L_wo = (etaO/etaI)^2 L_wi. Importance carries no such factor.
-    float etaScale = mode == Transport::Radiance ? sqr(etaO / etaI) : 1;
-    // The deliberate mistake swaps the rules: eye tracing scales like power (as smallpt), particles
-    // scale like radiance (a light tracer that reuses the radiance BTDF).
-    if (scene.conventions.symmetricRefraction) etaScale = mode == Transport::Radiance ? 1 : sqr(etaI / etaO);
-    bs.weight = Vec3(etaScale * adjointCorrection(scene, sp, wo, bs.wi, mode));
-    return dot(bs.wi, sp.ng) * dot(wo, sp.ng) < 0;
+    if (u1 < specularReflectance(scene, sp, wo)) return specularScatter(scene, sp, wo, mode, false, bs);
+    return specularScatter(scene, sp, wo, mode, true, bs);
 }
 
 // == 5. Lights: area lights and point lights ===================================================
@@ -881,20 +897,25 @@ struct EmissionSample {
     Vec3 weight;        // Le |cos| / (pdfArea pdfDir): the light path's starting throughput
 };
 
-inline EmissionSample sampleEmission(const Scene& scene, Rng& rng) {
-    EmissionSample es;
-    es.point = sampleLightPoint(scene, rng);
-    float u1 = rng.uniform(), u2 = rng.uniform();
+// A direction from the light point es.point (Veach's mutations, section (h), resample it alone).
+inline void sampleEmissionDirection(EmissionSample& es, float u1, float u2) {
     if (es.point.deltaPosition) {
         es.dir = sampleUniformSphere(u1, u2);
         es.pdfDir = 1 / (4 * kPi);
         es.weight = es.point.emission / (es.point.pdfArea * es.pdfDir);
-        return es;
+        return;
     }
     Vec3 local = sampleCosineHemisphere(u1, u2);
     es.dir = Frame(es.point.sp.ng).toWorld(local);
     es.pdfDir = local.z / kPi;
     es.weight = local.z <= 0 ? Vec3(0) : es.point.emission * (local.z / (es.point.pdfArea * es.pdfDir));
+}
+
+inline EmissionSample sampleEmission(const Scene& scene, Rng& rng) {
+    EmissionSample es;
+    es.point = sampleLightPoint(scene, rng);
+    float u1 = rng.uniform(), u2 = rng.uniform();
+    sampleEmissionDirection(es, u1, u2);
     return es;
 }
 
@@ -978,8 +999,8 @@ inline void setResolution(Camera& cam, int width, int height) {
 // Metropolis methods first prepare what the whole pass shares (section 8's preparePass).
 // Paths are counted in bounces (scattering vertices): a path of k segments has k-1 bounces, and
 // --maxdepth D keeps paths with at most D bounces.
-enum class Method { PT, NEE, LT, IR, BDPT, VCM, MLT, MMLT };
-inline bool isMetropolis(Method m) { return m == Method::MLT || m == Method::MMLT; }  // section (h)
+enum class Method { PT, NEE, LT, IR, BDPT, VCM, PSSMLT, MMLT, MLT };
+inline bool isMetropolis(Method m) { return m == Method::PSSMLT || m == Method::MMLT || m == Method::MLT; }  // section (h)
 // How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
 // Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
 // the depth limit. bdpt's banner says which it uses and why.
@@ -1004,11 +1025,14 @@ struct RenderOptions {
     int strategyMaxLength = 0; // bdpt, vcm: > 0 records per-strategy images up to this path length
     float mergeRadius = -1;    // vcm: r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
     float alpha = 0.75f;       // vcm: r(n) = r_0 n^((alpha-1)/2) in pass n
-    float largeStep = 0.3f;    // mlt, mmlt: probability of a large step (every number afresh)
-    float sigma = 0.01f;       // mlt, mmlt: a small step's standard deviation, per number
-    int bootstrap = 0;         // mlt, mmlt: samples that estimate b and choose the chains' starts (0: bootstrapSamples)
-    int chains = 256;          // mlt, mmlt: Markov chains, each its own random stream
-    bool fixedStart = false;   // mlt, mmlt: the deliberate mistake, every chain from one state
+    float largeStep = 0.3f;    // pssmlt, mmlt: probability of a large step (every number afresh)
+    float sigma = 0.01f;       // pssmlt, mmlt: a small step's standard deviation, per number
+    int bootstrap = 0;         // Metropolis: samples that estimate b and choose the chains' starts (0: bootstrapSamples)
+    int chains = 256;          // Metropolis: Markov chains, each its own random stream
+    bool fixedStart = false;   // Metropolis: the deliberate mistake, every chain from one state
+    int mutations = 7;         // mlt: which of Veach's mutations run (bits: 1 bidirectional, 2 lens, 4 caustic)
+    bool chainShortPaths = false;  // Metropolis: the chains render paths of 1 and 2 segments too (else a bdpt sample)
+    int minDepth = 0;          // bdpt's connections: paths of fewer bounces are left out (the chains' own, above)
     // Called after each pass with that pass's image and the non-finite samples dropped so far.
     std::function<void(int pass, const std::vector<Vec3>& passImage, long long nonFinite)> onPass;
 };
@@ -1033,7 +1057,7 @@ struct RowOutput {
 };
 
 // What a method prepared for the whole pass before its pixels: ir's virtual point lights, vcm's
-// light subpaths and grid, mlt's chains (section 8 makes them; the types come with each method).
+// light subpaths and grid, the Metropolis chains (section 8 makes them; the types come with each method).
 struct Vpl;
 struct VcmPass;
 struct MltPass;
@@ -1337,17 +1361,21 @@ inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Ve
     }
 }
 
-// Subpaths of up to --maxdepth bounces, or (mmlt) of exactly `vertices` vertices where they survive.
-inline void cameraSubpath(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, Rng& rng,
-                          std::vector<PathVertex>& path, int vertices = 0) {
-    path.clear();
+inline PathVertex pinholeVertex(const Scene& scene) {
     PathVertex z0;
     z0.type = PathVertex::Camera;
     z0.sp.p = scene.camera.eye;
     z0.beta = Vec3(1);  // W_j cos / p = 1 for a pixel sample
     z0.pdfFwd = 1;
     z0.deltaPosition = true;  // never hit (no t = 0 strategy), but connected to: not a delta BSDF
-    path.push_back(z0);
+    return z0;
+}
+
+// Subpaths of up to --maxdepth bounces, or (mmlt) of exactly `vertices` vertices where they survive.
+inline void cameraSubpath(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, Rng& rng,
+                          std::vector<PathVertex>& path, int vertices = 0) {
+    path.clear();
+    path.push_back(pinholeVertex(scene));
     Ray ray = cameraRay(scene.camera, filmX, filmY);
     randomWalk(scene, opt, ray, Vec3(1), vertices > 0 ? vertices - 1 : opt.maxDepth + 1, Transport::Radiance, rng, path);
 }
@@ -1709,7 +1737,7 @@ inline Vec3 connectSubpaths(const Scene& scene, const RenderOptions& opt, Subpat
     for (int t = 1; t <= int(camera.size()); ++t)
         for (int s = 0; s <= light.size(); ++s) {
             int bounces = s + t - 2;
-            if (bounces < 0 || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
+            if (bounces < opt.minDepth || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
             bool record = opt.strategyMaxLength > 0 && s + t - 1 <= opt.strategyMaxLength;
             if (s == 1 && t == 1 && !record) continue;  // weight 0 (misWeight): spare its shadow ray
             int pixel = here;
@@ -1729,7 +1757,7 @@ inline Vec3 connectSubpaths(const Scene& scene, const RenderOptions& opt, Subpat
 }
 
 // One bdpt sample: a camera subpath through (filmX, filmY) in pixel `here`, a light subpath, and
-// all their connections (mlt, section (h), evaluates its states with it).
+// all their connections (pssmlt, section (h), evaluates its states with it).
 inline Vec3 bdptSample(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, int here, Rng& cameraRng,
                        Rng& lightRng, RowOutput& out) {
     thread_local std::vector<PathVertex> camera, light;
@@ -2016,10 +2044,12 @@ inline Vec3 sampleVCM(const Scene& scene, const RenderOptions& opt, const PassDa
     return vp.mergeEta > 0 ? L + mergeCameraVertices(scene, opt, vp, camera, here, out) : L;
 }
 
-// -- (h) mlt, mmlt: "Metropolis-Sampling [Veach '97] (see later): random variation and mutations
-// of bidirectional paths; very well suited for very complex light paths; unbiased but relatively
-// complex algorithms; uneven convergence". Primary-sample-space MLT (Kelemen, Szirmay-Kalos, Antal
-// and Csonka 2002) over bdpt's own sample. A state u is the list of uniform numbers one bdpt
+// -- (h) "Metropolis-Sampling [Veach '97] (see later): random variation and mutations of
+// bidirectional paths; very well suited for very complex light paths; unbiased but relatively
+// complex algorithms; uneven convergence". Three methods: pssmlt and mmlt here mutate the random
+// numbers of a sample, mlt (below) the path itself, as the slide says.
+// pssmlt: primary-sample-space MLT (Kelemen, Szirmay-Kalos, Antal and Csonka 2002) over bdpt's
+// own sample. A state u is the list of uniform numbers one bdpt
 // sample draws (section 1: every number passes Rng::uniform), kept in three streams so that a
 // number keeps its meaning when the other subpath changes length: the camera subpath's (the film
 // position first), the light subpath's and (mmlt) the strategy's. The sample's MIS-weighted
@@ -2044,21 +2074,22 @@ inline Vec3 sampleVCM(const Scene& scene, const RenderOptions& opt, const PassDa
 // mean f, zeros included), and each chain starts from one of them chosen in proportion to f,
 // which is distributed as f/b already (--fixed-start, the deliberate mistake: one fixed state).
 // Already, that is, as far as the bootstrap saw every kind of path: a bright family it missed
-// gets no chain until a large step finds it, and its light is short until then. mmlt's
-// bootstrap spreads one strategy per sample over maxdepth+1 lengths, so it needs more samples
-// than mlt's for each length to see its bright families (bootstrapSamples; notes, page 16).
+// gets no chain until a large step finds it, and its light is short until then.
 // A large step's proposal is an independent uniform state too (Kelemen's estimate of b): each
 // pass pools them into b for the next, so that b's error, which scales the whole image, keeps
 // falling (with the bootstrap's b alone the error stops falling at b's error). The price is a
 // bias of order 1/N from the dependence between b and the chains, far below the noise (test
-// `mlt and mmlt agree with the references ...`).
+// `mlt, pssmlt and mmlt agree with the references ...`).
 // --chains chains, each its own random stream: a pass gives each its share of W H mutations,
 // and their splats are added in chain order, so the image does not depend on --threads.
 // mmlt (Hachisuka, Kaplanyan and Dachsbacher 2014; pbrt's MLT): the state also holds a path
 // length k and, by the strategy stream's number, one strategy s of the k+1 that make it; its
 // contribution is (k+1) w_{s,t} C_{s,t} (t = k+1-s): one connection per sample, weighted by bdpt's
 // MIS, so the chain spends its mutations where the strategy that carries the path does. A chain
-// keeps the k it starts with, drawn in proportion to b_k, the integral of f over paths of length k.
+// keeps the k it starts with; each length gets chains in proportion to its b_k (the integral of
+// f over paths of length k), and its chains' splats are scaled by b_k over their mutations, so
+// that each length's share of the image is its own estimate, not the luck of its chain count.
+// Its subpaths have exactly the lengths the state chose: no roulette (it would only end some).
 // One stream of a state: its numbers, replayed in the order the walk asks for them.
 struct PrimaryStream {
     std::vector<float> values;
@@ -2072,7 +2103,7 @@ inline float replayUniform(PrimaryStream& stream) {
 
 struct MltState {
     PrimaryStream camera, light, strategy;
-    int length = 0;                    // mmlt: the path length k (segments); mlt: 0, every length
+    int length = 0;                    // mmlt: the path length k (segments); pssmlt: 0, every length
     std::vector<Splat> contributions;  // h_j(u)
     float f = 0;
 };
@@ -2108,7 +2139,7 @@ inline void evaluateState(const Scene& scene, const RenderOptions& opt, MltState
     int x = std::min(int(fx), W - 1), y = std::min(int(fy), H - 1), here = y * W + x;
     float filmX = filmCoordinate(x, fx - x), filmY = filmCoordinate(y, fy - y);
     u.contributions.clear();
-    if (opt.method == Method::MLT) {
+    if (opt.method == Method::PSSMLT) {
         thread_local RowOutput out;
         out.splats.clear();
         Vec3 L = bdptSample(scene, opt, filmX, filmY, here, cameraRng, lightRng, out);
@@ -2178,18 +2209,13 @@ inline bool proposeStep(const RenderOptions& opt, MltChain& chain) {
     return false;
 }
 
-// One Metropolis step of a chain whose current state has f > 0: propose, evaluate, splat the
-// expected values through splat(state, weight), accept with probability a. `accept` is
-// mltAcceptance (a test passes others, to see them fail).
-template <class Evaluate, class SplatState>
-inline void metropolisStep(const RenderOptions& opt, MltChain& chain, const Evaluate& evaluate, const SplatState& splat,
-                           float (*accept)(float, float) = mltAcceptance) {
-    bool large = proposeStep(opt, chain);
-    evaluate(chain.proposal);
-    if (large) chain.largeSteps.add(chain.proposal.f);
-    float a = accept(chain.current.f, chain.proposal.f);
-    if (a > 0) splat(chain.proposal, double(a) / chain.proposal.f);
-    chain.currentWeight += double(1 - a) / chain.current.f;
+// The end of every Metropolis step (pssmlt, mmlt, mlt): the expected values h/f of the proposal
+// (weight a) and of the current state (1 - a, added up until the chain leaves it) are splatted
+// through splat(state, weight / f), and the proposal is accepted with probability a.
+template <class Chain, class SplatState>
+inline void splatAndAccept(Chain& chain, double a, const SplatState& splat) {
+    if (a > 0) splat(chain.proposal, a / chain.proposal.f);
+    chain.currentWeight += (1 - a) / chain.current.f;
     ++chain.proposed;
     if (chain.rng.uniform() < a) {
         splat(chain.current, chain.currentWeight);
@@ -2199,48 +2225,545 @@ inline void metropolisStep(const RenderOptions& opt, MltChain& chain, const Eval
     }
 }
 
-// What mlt keeps from pass to pass.
-struct MltPass {
-    double b = 0, bStandardError = 0;  // the estimate of b = integral f(u) du this pass uses
-    std::vector<FSum> fByLength;       // f of independent states, per path length (mlt: one)
-    std::vector<MltChain> chains;
-    std::vector<std::vector<Splat>> chainSplats;  // this pass's, per chain
-    std::vector<Vec3> image;                      // this pass's: b sum h/f over W H mutations
-    long long total(long long MltChain::*count) const {  // accepted or proposed, over the chains
-        long long n = 0;
-        for (const MltChain& c : chains) n += c.*count;
-        return n;
-    }
+// One Metropolis step of a chain whose current state has f > 0: propose, evaluate, splat the
+// expected values through splat(state, weight), accept with probability a. `accept` is
+// mltAcceptance (a test passes others, to see them fail).
+template <class Evaluate, class SplatState>
+inline void metropolisStep(const RenderOptions& opt, MltChain& chain, const Evaluate& evaluate, const SplatState& splat,
+                           float (*accept)(float, float) = mltAcceptance) {
+    bool large = proposeStep(opt, chain);
+    evaluate(chain.proposal);
+    if (large) chain.largeSteps.add(chain.proposal.f);
+    splatAndAccept(chain, accept(chain.current.f, chain.proposal.f), splat);
+}
+
+// -- (h) mlt: Veach's Metropolis light transport (Veach and Guibas 1997; Veach 1997, ch. 11), the
+// slide's "random variation and mutations of bidirectional paths". The chain's state is a path
+// x = x_0..x_k itself (x_0 on a light, x_k the pinhole), and a mutation changes a few of its
+// vertices and keeps the rest: on a scene lit through a narrow gap, a path that has found the gap
+// keeps its crossing while the chain varies the rest, where pssmlt's large and small steps re-roll
+// the whole path and must find the gap again (notes, page 17).
+// The target is f(x), the path's measurement contribution (its luminance, in the units of a
+// pixel's share, section 8): with bdpt's pieces, f(x) = C_{s,t}(x) p_{s,t}(x) for any strategy
+// (s,t) able to make x, C its unweighted contribution, p_{s,t} the product of its area densities
+// (mirrors and glass in the measure of bdpt's banner, so that the deltas of f and p cancel).
+// A proposal y, made from x with the tentative transition density T(y|x), is accepted with
+//     a(y|x) = min(1, f(y) T(x|y) / (f(x) T(y|x)))
+// which keeps f/b the chain's stationary density (detailed balance, f(x) T(y|x) a(y|x) =
+// f(y) T(x|y) a(x|y)). Three mutations, each chosen uniformly among those that apply to x:
+// - the bidirectional mutation: delete the vertices x_a..x_{b-1} (kd = b-a+1 edges; kd = 1 deletes
+//   none), add n new ones (ka = n+1 edges): s by a walk from x_{a-1} (a new light point when
+//   a = 0), n-s by a walk from x_b, joined by one connection, with bdpt's walkers. y could have
+//   come from any split s, so T(y|x) = P(kd) P(ka|kd) / (#a (n+1)) sum_s p_s(y), p_s the product
+//   of the n new vertices' densities, x_a..x_{a+s-1} from the light side (pL) and the rest from
+//   the camera side (pE), the densities bdpt's MIS walk reads (a split whose connection would
+//   fall on a mirror or glass vertex cannot make y: its p_s is 0).
+// - the lens perturbation, for paths that end ... D S* E: move the point on the film by a small
+//   offset (density 1/R on [r1, r2] pixels, symmetric in x and y), trace the new camera ray through
+//   the same mirror and glass lobes as before, and connect the first other vertex to the old
+//   path. The offset's density cancels; left is the camera walk's density of the new vertices:
+//   T(y|x)/T(x|y) = pE(y's new vertices)/pE(x's old ones).
+// - the caustic perturbation, for paths that end (L|D) S* D E: turn the direction leaving x_l by
+//   an angle theta (density 1/theta, scaled so that the move on the film is a few pixels), follow
+//   the same specular lobes, and connect the new x_{k-1} to the pinhole. Its range of theta
+//   depends on the path's lengths, so its density does not cancel and is part of T.
+// Walks have no roulette (their lengths are chosen), so the densities carry none; glass adds the
+// probability of the lobe a walk took (F or 1-F) to T and to f alike, and a perturbation, which
+// keeps the lobes, has none. Products of densities span hundreds of decades on a path of
+// millimetre-sized scenes (1e-6 a vertex): f and T are in double, and only their ratios are used.
+// Start (Veach's "start-up bias" answer): a bootstrap of --bootstrap bdpt samples; every strategy's
+// MIS-weighted luminance w_{s,t} f/p_{s,t} is a candidate, their mean is b = integral f, and a chain
+// starts from a candidate chosen in proportion to it: sum_s w_s f/p_s p_s = f, so the start is
+// distributed as f/b already. Paths of one and two segments (direct light) are rendered by a
+// bdpt sample per pixel and left out of f, as Veach does (--chain-short-paths keeps them).
+
+// A path of the chain and what its mutations read: pL[i], pE[i] are the area densities of x_i
+// sampled from x_{i-1} (the light side; pL[0] the light point's) and from x_{i+1} (the camera
+// side; 0 at a point light, which nothing hits); lobe[i] is the probability of the lobe the path
+// took at a glass vertex (1 elsewhere).
+struct ChainPath {
+    std::vector<PathVertex> x;
+    std::vector<double> pL, pE, lobe;
+    Vec3 colour;   // f's colour, of luminance 1
+    double f = 0;  // luminance of f(x)
+    int pixel = -1;
+    int k() const { return int(x.size()) - 1; }  // segments
 };
 
-// The bootstrap's size: mmlt's samples are single strategies, each noisier than bdpt's whole
-// sample and a few times cheaper, and it spreads them over maxdepth+1 path lengths: ten times
-// mlt's (fewer left the start-up bias below visible on cornell-glass at 256 mutations per pixel).
+// y_0 as lightSubpath would have made it, for a vertex found on a light by either side.
+inline PathVertex lightVertexAt(const Scene& scene, const PathVertex& v) {
+    if (v.type == PathVertex::Light) return v;
+    LightPoint lp;
+    lp.sp = v.sp;
+    lp.light = scene.shapes[v.sp.shape].light;
+    lp.emission = scene.shapes[v.sp.shape].emission;
+    lp.pdfArea = pdfLightPoint(scene, v.sp.shape);
+    return lightVertex(lp);
+}
+
+// What a walk multiplies into its throughput when it leaves vertex v along w (f |cos| / p for the
+// density appendVertex then records; the lobe's weight at a mirror or glass, whose lobe w says),
+// and v's delta flag, as sampleBsdf would have set it.
+inline Vec3 scatteringWeight(const Scene& scene, PathVertex& v, Vec3 w, Transport mode) {
+    if (v.type == PathVertex::Camera) return Vec3(1);
+    if (v.type == PathVertex::Light) {
+        float pdf = pdfEmissionDirection(v, w);
+        return Vec3(pdf > 0 ? (v.deltaPosition ? 1 : dot(v.sp.ng, w)) / pdf : 0);
+    }
+    v.delta = !connectable(scene, v);
+    BsdfSample bs;
+    if (v.delta) return specularScatter(scene, v.sp, v.wo, mode, dot(w, v.sp.ng) * dot(v.wo, v.sp.ng) < 0, bs) ? bs.weight : Vec3(0);
+    float pdf, pdfReverse;
+    Vec3 f = evalVertex(scene, v, w, mode, pdf, pdfReverse);
+    return pdf > 0 ? f / pdf : Vec3(0);
+}
+
+// The subpath of the first n vertices of x from its light end (Importance) or from the pinhole
+// (Radiance), with the throughputs and densities the walkers would have given them.
+inline void subpathThrough(const Scene& scene, const std::vector<PathVertex>& x, int n, Transport mode, std::vector<PathVertex>& out) {
+    const int k = int(x.size()) - 1;
+    out.clear();
+    if (n == 0) return;
+    out.push_back(mode == Transport::Importance ? lightVertexAt(scene, x[0]) : pinholeVertex(scene));
+    for (int i = 1; i < n; ++i) {
+        PathVertex v;
+        v.sp = x[mode == Transport::Importance ? i : k - i].sp;
+        Vec3 d = out.back().sp.p - v.sp.p;
+        v.prevDist2 = dot(d, d);
+        v.wo = d / std::sqrt(v.prevDist2);
+        v.beta = out.back().beta * scatteringWeight(scene, out.back(), -v.wo, mode);
+        appendVertex(scene, out, v, mode);
+    }
+}
+
+// Extends a subpath by exactly n vertices sampled from its last one (a new film point from the
+// pinhole, a direction from a light point, a BSDF sample from a surface); false if the walk ends
+// sooner.
+inline bool extendSubpath(const Scene& scene, const RenderOptions& walk, std::vector<PathVertex>& path, int n, Transport mode, Rng& rng) {
+    if (n == 0) return true;
+    PathVertex& v = path.back();
+    Ray ray;
+    Vec3 beta;
+    if (v.type == PathVertex::Camera) {
+        const Camera& cam = scene.camera;
+        float fx = rng.uniform() * cam.width, fy = rng.uniform() * cam.height;
+        int px = std::min(int(fx), cam.width - 1), py = std::min(int(fy), cam.height - 1);
+        ray = cameraRay(cam, filmCoordinate(px, fx - px), filmCoordinate(py, fy - py));
+        beta = Vec3(1);
+    } else if (v.type == PathVertex::Light) {
+        EmissionSample es;
+        es.point.sp = v.sp;
+        es.point.emission = v.beta;  // Le/p_A: the weight comes out as beta |cos| / p_omega
+        es.point.pdfArea = 1;
+        es.point.deltaPosition = v.deltaPosition;
+        float u1 = rng.uniform(), u2 = rng.uniform();
+        sampleEmissionDirection(es, u1, u2);
+        if (isBlack(es.weight)) return false;
+        ray = v.deltaPosition ? Ray{v.sp.p, es.dir, kInf} : spawnRay(v.sp, es.dir);
+        beta = es.weight;
+    } else {
+        BsdfSample bs;
+        if (!sampleBsdf(scene, v.sp, v.wo, mode, rng, bs)) return false;
+        v.delta = bs.delta;
+        beta = v.beta * bs.weight;
+        ray = spawnRay(v.sp, bs.wi);
+    }
+    size_t before = path.size();
+    randomWalk(scene, walk, ray, beta, n, mode, rng, path);
+    return path.size() == before + size_t(n);
+}
+
+inline int pixelOf(const Camera& cam, Vec3 p) {
+    float fx, fy;
+    if (!projectToFilm(cam, p, fx, fy)) return -1;
+    return std::min(int(fy), cam.height - 1) * cam.width + std::min(int(fx), cam.width - 1);
+}
+
+// The path strategy (s,t) makes of light[0..s-1] and camera[0..t-1], with f, its pixel and the
+// densities of its vertices seen from both sides (the ones misWalk reads); false if it carries
+// nothing or leaves the image.
+inline bool joinPath(const Scene& scene, Subpath light, int s, Subpath camera, int t, ChainPath& y) {
+    Connection c;
+    int pixel = -1;
+    Vec3 C = connectStrategy(scene, light, s, camera, t, c, pixel);
+    if (isBlack(C) || !isFinite(C) || !(luminance(C) > 0)) return false;
+    Junction j = connectionJunction(scene, light, s, camera, t, c);
+    const int k = s + t - 1;
+    y.x.resize(k + 1);
+    y.pL.assign(k + 1, 0);
+    y.pE.assign(k + 1, 0);
+    y.lobe.assign(k + 1, 1);
+    double p = 1;
+    for (int i = 0; i < s; ++i) {
+        y.x[i] = light[i];
+        y.pL[i] = light[i].pdfFwd;
+        y.pE[i] = i == s - 1 ? j.qsRev : i == s - 2 ? j.qsMinusRev : light[i].pdfRev;
+        p *= light[i].pdfFwd;
+    }
+    for (int i = 0; i < t; ++i) {
+        y.x[k - i] = camera[i];
+        y.pE[k - i] = camera[i].pdfFwd;
+        y.pL[k - i] = i == t - 1 ? j.ptRev : i == t - 2 ? j.ptMinusRev : camera[i].pdfRev;
+        p *= camera[i].pdfFwd;
+    }
+    if (y.x[0].deltaPosition) y.pE[0] = 0;
+    y.pL[k] = 0;  // the pinhole
+    for (int i = 1; i < k; ++i) {
+        const Material& m = scene.materials[scene.shapes[y.x[i].sp.shape].material];
+        if (m.type != Material::Glass) continue;
+        float F = specularReflectance(scene, y.x[i].sp, normalize(y.x[i + 1].sp.p - y.x[i].sp.p));
+        bool refracted = dot(y.x[i + 1].sp.p - y.x[i].sp.p, y.x[i].sp.ng) * dot(y.x[i - 1].sp.p - y.x[i].sp.p, y.x[i].sp.ng) < 0;
+        y.lobe[i] = refracted ? 1 - F : F;
+        p *= y.lobe[i];
+    }
+    y.pixel = t == 1 ? pixel : pixelOf(scene.camera, y.x[k - 1].sp.p);
+    float lum = luminance(C);
+    y.colour = C / lum;
+    y.f = lum * p;
+    return y.pixel >= 0 && y.f > 0 && std::isfinite(y.f);
+}
+
+// -- The bidirectional mutation. Veach's probabilities (1997, p. 347): delete kd edges with
+// probability 1/4, 1/2, then 2^-kd; add ka = kd with 1/2, kd +- 1 with 0.15 each, kd +- j with
+// 0.2 * 2^-j; each restricted to what the path allows and renormalised.
+inline double deletionWeight(int kd) { return kd == 1 ? 0.25 : kd == 2 ? 0.5 : std::ldexp(1.0, -kd); }
+inline double additionWeight(int ka, int kd) {
+    int j = std::abs(ka - kd);
+    return j == 0 ? 0.5 : j == 1 ? 0.15 : 0.2 * std::ldexp(1.0, -j);
+}
+
+// Path lengths (segments) the chain may visit.
+struct LengthRange {
+    int min, max;
+};
+
+// P(kd) on a path of k segments: kd from 1 to k+1 (all vertices but the pinhole).
+inline double deletionProbability(int kd, int k) {
+    double total = 0;
+    for (int d = 1; d <= k + 1; ++d) total += deletionWeight(d);
+    return kd >= 1 && kd <= k + 1 ? deletionWeight(kd) / total : 0;
+}
+// P(ka | kd): the new length k - kd + ka stays in range, and kd = ka = 1 (no change) is not drawn.
+inline bool additionAllowed(int ka, int kd, int k, LengthRange r) {
+    int newK = k - kd + ka;
+    return ka >= 1 && newK >= r.min && newK <= r.max && !(ka == 1 && kd == 1);
+}
+inline double additionProbability(int ka, int kd, int k, LengthRange r) {
+    double total = 0;
+    for (int a = 1; a <= r.max + 1; ++a)
+        if (additionAllowed(a, kd, k, r)) total += additionWeight(a, kd);
+    return additionAllowed(ka, kd, k, r) && total > 0 ? additionWeight(ka, kd) / total : 0;
+}
+
+// Where the deletion may start: x_{a-1} and x_b (b = a+kd-1) are kept and must not be mirrors or
+// glass (a walk or a connection starts there); a = 0 deletes the light point, which then needs
+// a new one (ka > 1) and cannot take an insertion before it (kd > 1).
+inline bool deletionAllowed(const Scene& scene, const ChainPath& x, int a, int kd, int ka) {
+    int b = a + kd - 1;
+    if (a < 0 || b > x.k()) return false;
+    if (a == 0) return kd > 1 && ka > 1 && connectable(scene, x.x[b]);
+    return connectable(scene, x.x[a - 1]) && connectable(scene, x.x[b]);
+}
+inline int deletionPlaces(const Scene& scene, const ChainPath& x, int kd, int ka) {
+    int n = 0;
+    for (int a = 0; a + kd - 1 <= x.k(); ++a) n += deletionAllowed(scene, x, a, kd, ka);
+    return n;
+}
+
+// T's density of the n vertices x_a..x_{a+n-1} of y over the splits that could have made them,
+// their glass lobes included: sum_s prod_{i<a+s} pL[i] prod_{i>=a+s} pE[i].
+inline double splitDensitySum(const Scene& scene, const ChainPath& y, int a, int n) {
+    double sum = 0;
+    for (int s = 0; s <= n; ++s) {
+        int lightEnd = a + s - 1, cameraEnd = a + s;  // the connection (lightEnd -1: the camera walk found the light)
+        if ((lightEnd >= 0 && !connectable(scene, y.x[lightEnd])) || !connectable(scene, y.x[cameraEnd])) continue;
+        double p = 1;
+        for (int i = a; i < a + n; ++i) p *= i < a + s ? y.pL[i] : y.pE[i];
+        sum += p;
+    }
+    for (int i = a; i < a + n; ++i) sum *= y.lobe[i];
+    return sum;
+}
+
+// T(y|x) of the bidirectional mutation that replaced x_a..x_{a+kd-2} by y_a..y_{a+ka-2}. A point
+// light is one point: deleting it (a = 0) and drawing the same light again makes the same y as
+// keeping it (a = 1), so T sums both ways.
+inline double deletionDensity(const Scene& scene, const ChainPath& x, const ChainPath& y, int a, int kd, int ka, LengthRange r) {
+    int places = deletionPlaces(scene, x, kd, ka);
+    if (places == 0) return 0;
+    return deletionProbability(kd, x.k()) * additionProbability(ka, kd, x.k(), r) / (double(places) * ka) *
+           splitDensitySum(scene, y, a, ka - 1);
+}
+inline double bidirectionalDensity(const Scene& scene, const ChainPath& x, const ChainPath& y, int a, int kd, int ka, LengthRange r) {
+    double T = deletionDensity(scene, x, y, a, kd, ka, r);
+    if (a == 1 && x.x[0].deltaPosition) T += deletionDensity(scene, x, y, 0, kd + 1, ka + 1, r);
+    return T;
+}
+
+template <class Pick>
+inline int pickIndex(int first, int last, Rng& rng, const Pick& weight) {  // index drawn in proportion to weight(i)
+    double total = 0;
+    for (int i = first; i <= last; ++i) total += weight(i);
+    if (!(total > 0)) return -1;
+    double u = rng.uniform() * total;
+    for (int i = first; i <= last; ++i)
+        if ((u -= weight(i)) < 0 && weight(i) > 0) return i;
+    for (int i = last; i >= first; --i)
+        if (weight(i) > 0) return i;
+    return -1;
+}
+
+// A proposal y and its ratio f(y) T(x|y) / (f(x) T(y|x)); 0: no proposal (a walk ended, the
+// connection is blocked, ...), which the chain counts as a rejection.
+inline double bidirectionalMutation(const Scene& scene, const RenderOptions& walk, LengthRange r, const ChainPath& x, Rng& rng, ChainPath& y) {
+    thread_local std::vector<PathVertex> light, camera;
+    const int k = x.k();
+    int kd = pickIndex(1, k + 1, rng, [&](int d) { return deletionProbability(d, k); });
+    int ka = pickIndex(1, r.max + 1, rng, [&](int e) { return additionProbability(e, kd, k, r); });
+    if (kd < 0 || ka < 0) return 0;
+    int a = pickIndex(0, k + 1 - kd, rng, [&](int i) { return double(deletionAllowed(scene, x, i, kd, ka)); });
+    if (a < 0) return 0;
+    const int b = a + kd - 1, n = ka - 1, s = std::min(int(rng.uniform() * (n + 1)), n);
+    if (a == 0) {
+        light.clear();
+        if (s > 0) lightSubpath(scene, walk, rng, light, s);
+        if (int(light.size()) != s) return 0;
+    } else {
+        subpathThrough(scene, x.x, a, Transport::Importance, light);
+        if (!extendSubpath(scene, walk, light, s, Transport::Importance, rng)) return 0;
+    }
+    subpathThrough(scene, x.x, k - b + 1, Transport::Radiance, camera);
+    if (!extendSubpath(scene, walk, camera, n - s, Transport::Radiance, rng)) return 0;
+    if (!joinPath(scene, light, int(light.size()), camera, int(camera.size()), y)) return 0;
+    if (a == 0 && x.x[0].deltaPosition && y.x[0].light == x.x[0].light) a = 1, --kd, --ka;  // the same point light: x_0 kept
+    double forward = bidirectionalDensity(scene, x, y, a, kd, ka, r);
+    double backward = bidirectionalDensity(scene, y, x, a, ka, kd, r);
+    return forward > 0 ? y.f * backward / (x.f * forward) : 0;
+}
+
+// -- The perturbations carry a path through the same mirror and glass lobes it had: from vertex
+// `from` of x (already replaced by `start`, the last of path), the walk along `ray` must meet a
+// specular surface wherever x had one, taking the same lobe, and a non-specular one at `to`.
+inline bool followLobes(const Scene& scene, const ChainPath& x, int from, int to, Ray ray, Transport mode, std::vector<PathVertex>& path) {
+    int step = to > from ? 1 : -1;
+    Vec3 beta = path.back().beta * scatteringWeight(scene, path.back(), ray.d, mode);
+    for (int i = from + step;; i += step) {
+        Hit hit = intersect(scene, ray);
+        if (!hit.found() || isBlack(beta)) return false;
+        PathVertex v;
+        v.sp = surfaceAt(scene, ray, hit);
+        v.beta = beta;
+        Vec3 d = path.back().sp.p - v.sp.p;
+        v.prevDist2 = dot(d, d);
+        if (!(v.prevDist2 > 0)) return false;
+        v.wo = d / std::sqrt(v.prevDist2);
+        appendVertex(scene, path, v, mode);
+        if (connectable(scene, path.back()) != (i == to)) return false;
+        if (i == to) return true;
+        const SurfacePoint& old = x.x[i].sp;
+        bool refracted = dot(x.x[i + step].sp.p - old.p, old.ng) * dot(x.x[i - step].sp.p - old.p, old.ng) < 0;
+        BsdfSample bs;
+        if (!specularScatter(scene, path.back().sp, path.back().wo, mode, refracted, bs)) return false;
+        path.back().delta = true;
+        beta = beta * bs.weight;
+        ray = spawnRay(path.back().sp, bs.wi);
+    }
+}
+
+// Lens perturbation's reach, in pixels (Veach 1997, p. 354): from 0.1 to the radius of a disc of
+// 5% of the image.
+inline void lensRadii(const Camera& cam, double& r1, double& r2) {
+    r1 = 0.1;
+    r2 = std::max(1.0, std::sqrt(0.05 * cam.width * cam.height / kPi));
+}
+
+// The lens perturbation applies to paths ending ... D S* E: c, the first non-specular vertex seen
+// from the camera, and the one before it, connectable; -1 if it does not apply.
+inline int lensVertex(const Scene& scene, const ChainPath& x) {
+    int c = x.k() - 1;
+    while (c > 0 && !connectable(scene, x.x[c])) --c;
+    return c >= 1 && connectable(scene, x.x[c]) && connectable(scene, x.x[c - 1]) ? c : -1;
+}
+
+inline double lensPerturbation(const Scene& scene, const ChainPath& x, Rng& rng, ChainPath& y) {
+    thread_local std::vector<PathVertex> light, camera;
+    const Camera& cam = scene.camera;
+    const int k = x.k(), c = lensVertex(scene, x);
+    float fx, fy;
+    if (c < 0 || !projectToFilm(cam, x.x[k - 1].sp.p, fx, fy)) return 0;
+    double r1, r2;
+    lensRadii(cam, r1, r2);
+    double R = r2 * std::exp(-std::log(r2 / r1) * rng.uniform()), phi = 2 * kPi * rng.uniform();
+    float nx = float(fx + R * std::cos(phi)), ny = float(fy + R * std::sin(phi));
+    if (!(nx >= 0 && nx < cam.width && ny >= 0 && ny < cam.height)) return 0;  // off the film: rejected, never wrapped
+    camera.assign(1, pinholeVertex(scene));
+    if (!followLobes(scene, x, k, c, cameraRay(cam, nx, ny), Transport::Radiance, camera)) return 0;
+    subpathThrough(scene, x.x, c, Transport::Importance, light);
+    if (!joinPath(scene, light, c, camera, k - c + 1, y)) return 0;
+    double pOld = 1, pNew = 1;
+    for (int i = c; i < k; ++i) pOld *= x.pE[i], pNew *= y.pE[i];
+    return pNew > 0 ? (y.f / pNew) / (x.f / pOld) : 0;
+}
+
+// The caustic perturbation applies to paths ending (L|D) S* D E: x_{k-1} connectable, and l the
+// first connectable vertex before it, through mirrors and glass; -1 if it does not apply.
+inline int causticVertex(const Scene& scene, const ChainPath& x) {
+    int k = x.k();
+    if (k < 2 || !connectable(scene, x.x[k - 1])) return -1;
+    int l = k - 2;
+    while (l > 0 && !connectable(scene, x.x[l])) --l;
+    return l;
+}
+
+// Its angles: the lens radii in radians per pixel, scaled by |x_{k-1} x_k| over the length of the
+// caustic's chain x_l..x_{k-1}, so that the film moves by about as many pixels; the density of
+// the angle theta between the old and the new direction, in solid angle.
+inline bool causticAngleRange(const Scene& scene, const ChainPath& x, int l, double& t1, double& t2) {
+    const Camera& cam = scene.camera;
+    double chain = 0;
+    for (int i = l; i < x.k() - 1; ++i) chain += length(x.x[i + 1].sp.p - x.x[i].sp.p);
+    double r1, r2;
+    lensRadii(cam, r1, r2);
+    double perPixel = 2 * std::atan(cam.tanHalfFov) / cam.height * length(x.x[x.k()].sp.p - x.x[x.k() - 1].sp.p) / chain;
+    t1 = r1 * perPixel;
+    t2 = std::min(r2 * perPixel, 0.5 * kPi);
+    return t2 > t1;
+}
+inline double causticDensity(const Scene& scene, const ChainPath& x, int l, double theta) {
+    double t1, t2;
+    if (!causticAngleRange(scene, x, l, t1, t2) || !(theta >= t1 && theta <= t2)) return 0;
+    return 1 / (2 * kPi * std::log(t2 / t1) * theta * std::sin(theta));
+}
+
+// T(y|x) of a caustic perturbation: the angle's solid-angle density at x_l, made an area density
+// at y_{l+1}, then the chain's specular densities.
+inline double causticTransition(const Scene& scene, const ChainPath& from, const ChainPath& to, int l) {
+    Vec3 wOld = normalize(from.x[l + 1].sp.p - from.x[l].sp.p), d = to.x[l + 1].sp.p - to.x[l].sp.p;
+    double theta = std::acos(std::clamp(double(dot(wOld, normalize(d))), -1.0, 1.0));
+    double p = causticDensity(scene, from, l, theta) * cosAt(to.x[l + 1], normalize(d)) / dot(d, d);
+    for (int i = l + 2; i < to.k(); ++i) p *= to.pL[i];
+    return p;
+}
+
+inline double causticPerturbation(const Scene& scene, const ChainPath& x, Rng& rng, ChainPath& y) {
+    thread_local std::vector<PathVertex> light;
+    const int k = x.k(), l = causticVertex(scene, x);
+    double t1, t2;
+    if (l < 0 || !causticAngleRange(scene, x, l, t1, t2)) return 0;
+    double theta = t2 * std::exp(-std::log(t2 / t1) * rng.uniform()), phi = 2 * kPi * rng.uniform();
+    Vec3 w = normalize(x.x[l + 1].sp.p - x.x[l].sp.p);
+    Vec3 turned = Frame(w).toWorld(Vec3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)), float(std::cos(theta))));
+    subpathThrough(scene, x.x, l + 1, Transport::Importance, light);
+    const PathVertex& xl = light.back();
+    Ray ray = xl.deltaPosition ? Ray{xl.sp.p, turned, kInf} : spawnRay(xl.sp, turned);
+    if (!followLobes(scene, x, l, k - 1, ray, Transport::Importance, light)) return 0;
+    PathVertex pinhole = pinholeVertex(scene);
+    if (!joinPath(scene, light, k, Subpath(&pinhole, 1), 1, y)) return 0;
+    double forward = causticTransition(scene, x, y, l), backward = causticTransition(scene, y, x, l);
+    return forward > 0 ? y.f * backward / (x.f * forward) : 0;
+}
+
+// The mutations that apply to x (the bidirectional one always, the only one that changes a
+// path's length or its kind); each is chosen with probability 1/count.
+enum MutationBits { kBidirectional = 1, kLens = 2, kCaustic = 4 };
+inline int applicableMutations(const Scene& scene, const ChainPath& x, int enabled) {
+    return (enabled & kBidirectional) | (enabled & kLens && lensVertex(scene, x) >= 0 ? kLens : 0) |
+           (enabled & kCaustic && causticVertex(scene, x) >= 0 ? kCaustic : 0);
+}
+inline int bitCount(int bits) { return (bits & 1) + (bits >> 1 & 1) + (bits >> 2 & 1); }
+
+// One proposal from x and its acceptance a(y|x), the probability of choosing the mutation
+// included on both sides (it differs where y admits other perturbations than x).
+inline double mutate(const Scene& scene, const RenderOptions& walk, LengthRange r, const ChainPath& x, Rng& rng, ChainPath& y, int* which = nullptr) {
+    const int applicable = applicableMutations(scene, x, walk.mutations), count = bitCount(applicable);
+    if (count == 0) return 0;  // (tests run the perturbations alone)
+    int pick = std::min(int(rng.uniform() * count), count - 1), bit = 1;
+    for (;; bit <<= 1)
+        if (applicable & bit && pick-- == 0) break;
+    if (which) *which = bit;
+    double ratio = bit == kBidirectional ? bidirectionalMutation(scene, walk, r, x, rng, y)
+                   : bit == kLens        ? lensPerturbation(scene, x, rng, y)
+                                         : causticPerturbation(scene, x, rng, y);
+    if (!(ratio > 0) || !std::isfinite(ratio)) return 0;
+    return std::min(1.0, ratio * count / bitCount(applicableMutations(scene, y, walk.mutations)));
+}
+
+struct PathChain {
+    Rng rng;
+    ChainPath current, proposal;
+    double currentWeight = 0;
+    long long accepted = 0, proposed = 0;
+    long long acceptedBy[3] = {0, 0, 0}, proposedBy[3] = {0, 0, 0};  // per mutation: bidirectional, lens, caustic
+};
+
+// -- The three Metropolis methods' passes. Paths of one and two segments (direct light, the lamp
+// seen) are bright and easy: a chain that follows f spends most of its mutations there, where a
+// bdpt sample is better. By default a bdpt sample per pixel renders them and the chains render
+// the rest (Veach; pbrt-v2, Mitsuba); --chain-short-paths gives the chains all lengths (the lesson:
+// notes, page 16).
+inline int shortestChainPath(const RenderOptions& opt) { return opt.chainShortPaths ? 1 : 3; }  // segments
+
+// The options of the chains' own samples and walks: no path shorter than the above, and for
+// mmlt's fixed-length subpaths and Veach's walks no roulette (their lengths are chosen).
+inline RenderOptions chainOptions(const RenderOptions& opt) {
+    RenderOptions o = opt;
+    o.minDepth = shortestChainPath(opt) - 1;
+    if (opt.method != Method::PSSMLT) o.roulette = Roulette::Off;
+    return o;
+}
+
+// What the Metropolis methods keep from pass to pass.
+struct MltPass {
+    double b = 0, bStandardError = 0;  // the estimate of b = integral f this pass uses
+    std::vector<FSum> fByLength;       // f of independent states, per path length (pssmlt, mlt: one)
+    std::vector<MltChain> chains;      // pssmlt, mmlt
+    std::vector<PathChain> paths;      // mlt
+    std::vector<std::vector<Splat>> chainSplats;  // this pass's, per chain
+    std::vector<Vec3> image;                      // this pass's: b sum h/f over W H mutations
+    long long total(long long MltChain::*count, long long PathChain::*pathCount) const {  // accepted or proposed
+        long long n = 0;
+        for (const MltChain& c : chains) n += c.*count;
+        for (const PathChain& c : paths) n += c.*pathCount;
+        return n;
+    }
+    double lengthB(int i) const { return fByLength[i].count > 0 ? fByLength[i].sum / fByLength[i].count : 0; }
+};
+
+// The bootstrap's size: 100,000 samples for pssmlt, ten times as many for the other two. mlt's b
+// comes from its bootstrap alone (pssmlt's and mmlt's large steps keep adding to theirs), and its
+// error scales the whole image. mmlt spreads its samples over the path lengths, one strategy
+// each, and a length whose b_k the bootstrap leaves at 0 gets no chain, so no large step ever
+// corrects it: on sds, where only s = 0 makes the lamp seen through glass (k = 3), 100,000
+// samples (3,200 a length) left that length dark in 2 of 3 seeds (-68% and -69%).
 inline int bootstrapSamples(const RenderOptions& opt) {
-    return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::MMLT ? 1000000 : 100000;
+    return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::PSSMLT ? 100000 : 1000000;
 }
 
 inline Rng bootstrapRng(const RenderOptions& opt, int sample, int stream) {
     return makeRng(opt.seed ^ 0x2545f4914f6cdd1dULL, uint64_t(sample), uint64_t(stream));
 }
 
-// Bootstrap sample i (mmlt: of length 1 + i mod (maxdepth+1)) into u, from its own streams.
+inline int lengthCount(const RenderOptions& opt) {  // mmlt: one b_k per path length (none: all are short); pssmlt, mlt: one b
+    return opt.method == Method::MMLT ? std::max(0, opt.maxDepth + 2 - shortestChainPath(opt)) : 1;
+}
+
+// Bootstrap sample i (mmlt: of the i-th length, in turn) into u, from its own streams.
 inline void bootstrapSample(const Scene& scene, const RenderOptions& opt, int i, MltState& u) {
     Rng camera = bootstrapRng(opt, i, 0), light = bootstrapRng(opt, i, 1), strategy = bootstrapRng(opt, i, 2);
     u.camera.values.clear();
     u.light.values.clear();
     u.strategy.values.clear();
-    u.length = opt.method == Method::MMLT ? 1 + i % (opt.maxDepth + 1) : 0;
-    evaluateState(scene, opt, u, camera, light, strategy);
+    u.length = opt.method == Method::MMLT ? shortestChainPath(opt) + i % lengthCount(opt) : 0;
+    evaluateState(scene, chainOptions(opt), u, camera, light, strategy);
 }
 
-// b = sum over lengths k of the mean f of length k's independent samples (mlt: one length),
-// and its standard error.
+// b = sum over lengths k of the mean f of length k's independent samples, and its standard error.
 inline void estimateB(MltPass& mp) {
     double b = 0, variance = 0;
-    for (const FSum& s : mp.fByLength) {
+    for (size_t k = 0; k < mp.fByLength.size(); ++k) {
+        const FSum& s = mp.fByLength[k];
         if (s.count == 0) continue;
-        double mean = s.sum / s.count;
+        double mean = mp.lengthB(int(k));
         b += mean;
         variance += std::max(0.0, s.sumSquares / s.count - mean * mean) / std::max(1.0, s.count - 1);
     }
@@ -2248,75 +2771,219 @@ inline void estimateB(MltPass& mp) {
     mp.bStandardError = std::sqrt(variance);
 }
 
-// b from --bootstrap samples (mmlt: spread evenly over the lengths), and each chain's start: a
-// bootstrap sample drawn in proportion to its f.
+// The chains' lengths (mmlt): chains in proportion to each length's b_k, by largest remainders,
+// so that no length with light is left without one while chains remain. Drawing each chain's
+// length from the bootstrap instead leaves each length's share of the image to chance.
+inline std::vector<int> chainLengths(const MltPass& mp, int chains) {
+    const int L = int(mp.fByLength.size());
+    std::vector<int> count(L, 0);
+    std::vector<double> remainder(L, 0);
+    int given = 0;
+    for (int k = 0; k < L; ++k) {
+        double share = chains * mp.lengthB(k) / mp.b;
+        count[k] = int(share);
+        remainder[k] = mp.lengthB(k) > 0 ? share - count[k] + (count[k] == 0) : -1;  // an empty lit length first
+        given += count[k];
+    }
+    for (; given < chains; ++given) {
+        int k = int(std::max_element(remainder.begin(), remainder.end()) - remainder.begin());
+        ++count[k];
+        remainder[k] = -1;
+        if (*std::max_element(remainder.begin(), remainder.end()) < 0)  // every length served: the rest by b_k again
+            for (int j = 0; j < L; ++j) remainder[j] = mp.lengthB(j) > 0 ? chains * mp.lengthB(j) / mp.b - count[j] : -1;
+    }
+    std::vector<int> length;
+    for (int k = 0; k < L; ++k) length.insert(length.end(), count[k], k);
+    return length;
+}
+
+// b from --bootstrap samples, and each chain's start: a bootstrap sample (of its length) drawn in
+// proportion to its f.
 inline void startChains(const Scene& scene, const RenderOptions& opt, int threads, MltPass& mp, RayCount& rays) {
-    const int n = bootstrapSamples(opt), lengths = opt.method == Method::MMLT ? opt.maxDepth + 1 : 1;
+    const int n = bootstrapSamples(opt), lengths = lengthCount(opt);
+    mp.chains.assign(std::max(1, opt.chains), MltChain());
+    mp.chainSplats.assign(mp.chains.size(), {});
+    if (lengths == 0) return;  // --maxdepth leaves the chains no path: b = 0, the image is bdpt's short paths
     std::vector<double> f(n);
-    RayCount traced = parallelRows(n, threads, [&](int i, bool) {
+    rays += parallelRows(n, threads, [&](int i, bool) {
         thread_local MltState u;
         bootstrapSample(scene, opt, i, u);
         f[i] = u.f;
     });
-    rays += traced;
     mp.fByLength.assign(lengths, FSum());
     for (int i = 0; i < n; ++i) mp.fByLength[i % lengths].add(f[i]);
     estimateB(mp);
-    std::vector<double> count(lengths);
-    for (int k = 0; k < lengths; ++k) count[k] = mp.fByLength[k].count;
-    mp.chains.assign(std::max(1, opt.chains), MltChain());
-    mp.chainSplats.assign(mp.chains.size(), {});
-    if (!(mp.b > 0)) return;  // no sample found light: the image stays black
-    // Each length's samples weigh by 1/count of that length, so that the choice is f / (n_k b).
-    std::vector<double> cdf(n);
-    double total = 0;
-    for (int i = 0; i < n; ++i) cdf[i] = total += f[i] / count[i % lengths];
-    int firstLit = int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
+    if (!(mp.b > 0)) return;  // no sample found light: the chains' image stays black
+    std::vector<int> length = lengths > 1 ? chainLengths(mp, int(mp.chains.size())) : std::vector<int>(mp.chains.size(), 0);
+    std::vector<std::vector<double>> cdf(lengths);  // per length, over its samples i = k, k + L, ...
+    for (int i = 0; i < n; ++i) cdf[i % lengths].push_back((cdf[i % lengths].empty() ? 0 : cdf[i % lengths].back()) + f[i]);
     for (size_t c = 0; c < mp.chains.size(); ++c) {
         MltChain& chain = mp.chains[c];
         chain.rng = makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(c), 0);
-        double pick = double(chain.rng.uniform()) * total;
-        int i = opt.fixedStart ? firstLit : int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin());
-        i = std::min(i, n - 1);
-        while (f[i] == 0) --i;  // pick fell on the edge of a zero: the sample before holds it
+        const std::vector<double>& C = cdf[length[c]];
+        double pick = double(chain.rng.uniform()) * C.back();
+        int j = int(std::upper_bound(C.begin(), C.end(), pick) - C.begin());
+        j = std::min(j, int(C.size()) - 1);
+        while (j > 0 && C[j] == C[j - 1]) --j;  // pick fell on the edge of a zero: the sample before holds it
+        int i = length[c] + j * lengths;
+        if (opt.fixedStart) i = int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
         bootstrapSample(scene, opt, i, chain.current);
     }
 }
 
-// One pass: W H mutations shared among the chains (one per pixel on average), their splats
-// added in chain order into mp.image.
+// The pass's image from the chains' splats, added in chain order. Chains of path length k
+// (mmlt) are scaled by b_k N / M_k (M_k their mutations, N = W H), the others by b.
+inline void addChainSplats(MltPass& mp, long long N, const std::vector<int>& lengthOfChain, const std::vector<long long>& mutations) {
+    std::vector<double> scale(mp.fByLength.size(), 0), done(mp.fByLength.size(), 0);
+    for (size_t c = 0; c < lengthOfChain.size(); ++c) done[lengthOfChain[c]] += double(mutations[c]);
+    for (size_t k = 0; k < scale.size(); ++k)
+        scale[k] = done[k] > 0 ? (scale.size() > 1 ? mp.lengthB(int(k)) : mp.b) * double(N) / done[k] : 0;
+    mp.image.assign(size_t(N), Vec3(0));
+    for (size_t c = 0; c < mp.chainSplats.size(); ++c)
+        for (const Splat& s : mp.chainSplats[c]) mp.image[s.pixel] += s.value * float(scale[lengthOfChain[c]]);
+}
+
+inline long long mutationsOfChain(long long N, long long C, long long c) { return N / C + (c < N % C); }
+
+// One pass of pssmlt or mmlt: W H mutations shared among the chains (one per pixel on average).
 inline void traceMltPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, MltPass& mp, RayCount& rays) {
     const long long N = (long long)scene.camera.width * scene.camera.height;
     if (pass == 0) startChains(scene, opt, threads, mp, rays);
     mp.image.assign(size_t(N), Vec3(0));
     if (!(mp.b > 0)) return;
     const long long C = (long long)mp.chains.size();
-    RayCount traced = parallelRows(int(C), threads, [&](int c, bool) {
+    const RenderOptions chainOpt = chainOptions(opt);
+    rays += parallelRows(int(C), threads, [&](int c, bool) {
         MltChain& chain = mp.chains[c];
         std::vector<Splat>& out = mp.chainSplats[c];
         out.clear();
         auto splat = [&](const MltState& u, double weight) {
             for (const Splat& h : u.contributions)
-                if (!isBlack(h.value)) out.push_back({h.pixel, h.value * float(weight * mp.b)});
+                if (!isBlack(h.value)) out.push_back({h.pixel, h.value * float(weight)});
         };
-        auto evaluate = [&](MltState& u) { evaluateState(scene, opt, u, chain.rng, chain.rng, chain.rng); };
-        for (long long i = 0, n = N / C + (c < N % C); i < n; ++i) metropolisStep(opt, chain, evaluate, splat);
+        auto evaluate = [&](MltState& u) { evaluateState(scene, chainOpt, u, chain.rng, chain.rng, chain.rng); };
+        for (long long i = 0, n = mutationsOfChain(N, C, c); i < n; ++i) metropolisStep(opt, chain, evaluate, splat);
         splat(chain.current, chain.currentWeight);
         chain.currentWeight = 0;
     });
-    rays += traced;
-    for (const std::vector<Splat>& splats : mp.chainSplats)
-        for (const Splat& s : splats) mp.image[s.pixel] += s.value;
-    for (MltChain& chain : mp.chains) {  // the next pass's b, with this pass's large steps
-        mp.fByLength[opt.method == Method::MMLT ? chain.current.length - 1 : 0].add(chain.largeSteps);
-        chain.largeSteps = FSum();
+    std::vector<int> lengthOfChain(C, 0);
+    std::vector<long long> mutations(C);
+    for (long long c = 0; c < C; ++c) {
+        if (opt.method == Method::MMLT) lengthOfChain[c] = mp.chains[c].current.length - shortestChainPath(opt);
+        mutations[c] = mutationsOfChain(N, C, c);
+    }
+    addChainSplats(mp, N, lengthOfChain, mutations);
+    for (long long c = 0; c < C; ++c) {  // the next pass's b, with this pass's large steps
+        mp.fByLength[lengthOfChain[c]].add(mp.chains[c].largeSteps);
+        mp.chains[c].largeSteps = FSum();
     }
     estimateB(mp);
 }
 
-// mlt and mmlt: the pixel's value is its share of the chains' pass.
-inline Vec3 sampleMLT(const Scene& scene, const RenderOptions&, const PassData& pass, int x, int y, Rng&, RowOutput&) {
-    return pass.mlt->image[size_t(y) * scene.camera.width + x];
+// mlt's bootstrap sample i: a bdpt sample of a uniform film point; each strategy's MIS-weighted
+// luminance w_{s,t} f/p_{s,t} (the chains' lengths only) is a candidate start. Returns their sum;
+// `pick` in [0, sum) chooses one into `start`.
+inline double pathBootstrapSample(const Scene& scene, const RenderOptions& opt, int i, double pick, ChainPath* start) {
+    thread_local std::vector<PathVertex> light, camera, full, startLight, startCamera;
+    thread_local RowOutput out;
+    RenderOptions record = opt;
+    record.strategyMaxLength = opt.maxDepth + 1;  // every strategy's contribution, unweighted and weighted
+    record.minDepth = shortestChainPath(opt) - 1;
+    Rng cameraRng = bootstrapRng(opt, i, 0), lightRng = bootstrapRng(opt, i, 1);
+    const Camera& cam = scene.camera;
+    float fx = cameraRng.uniform() * cam.width, fy = cameraRng.uniform() * cam.height;
+    int px = std::min(int(fx), cam.width - 1), py = std::min(int(fy), cam.height - 1);
+    cameraSubpath(scene, record, filmCoordinate(px, fx - px), filmCoordinate(py, fy - py), cameraRng, camera);
+    lightSubpath(scene, record, lightRng, light);
+    out.strategySplats.clear();
+    out.splats.clear();
+    connectSubpaths(scene, record, light, camera, py * cam.width + px, 0, out);
+    double sum = 0;
+    for (const StrategySplat& c : out.strategySplats) {
+        if (c.image % 2 == 0) continue;  // the unweighted image
+        double w = luminance(c.value);
+        if (!(w > 0) || !std::isfinite(w)) continue;
+        sum += w;
+        if (!start || pick >= sum) continue;
+        int index = c.image / 2, k = 1;  // index = k(k+1)/2 - 1 + s
+        while ((k + 1) * (k + 2) / 2 - 1 <= index) ++k;
+        int s = index - (k * (k + 1) / 2 - 1), t = k + 1 - s;
+        full.assign(light.begin(), light.begin() + s);
+        for (int j = t - 1; j >= 0; --j) full.push_back(camera[j]);
+        subpathThrough(scene, full, s, Transport::Importance, startLight);
+        subpathThrough(scene, full, t, Transport::Radiance, startCamera);
+        if (!joinPath(scene, startLight, s, startCamera, t, *start)) start->f = 0;
+        start = nullptr;
+    }
+    return sum;
+}
+
+// mlt's first pass: b and each chain's start from the bootstrap.
+inline void startPathChains(const Scene& scene, const RenderOptions& opt, int threads, MltPass& mp, RayCount& rays) {
+    const int n = bootstrapSamples(opt);
+    std::vector<double> f(n);
+    rays += parallelRows(n, threads, [&](int i, bool) { f[i] = pathBootstrapSample(scene, opt, i, 0, nullptr); });
+    mp.fByLength.assign(1, FSum());
+    for (double x : f) mp.fByLength[0].add(x);
+    estimateB(mp);
+    mp.paths.assign(std::max(1, opt.chains), PathChain());
+    mp.chainSplats.assign(mp.paths.size(), {});
+    if (!(mp.b > 0)) return;
+    std::vector<double> cdf(n);
+    std::partial_sum(f.begin(), f.end(), cdf.begin());
+    for (size_t c = 0; c < mp.paths.size(); ++c) {
+        PathChain& chain = mp.paths[c];
+        chain.rng = makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(c), 0);
+        for (int attempt = 0; attempt < 16 && !(chain.current.f > 0); ++attempt) {
+            double pick = double(chain.rng.uniform()) * cdf.back();
+            int i = std::min(int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()), n - 1);
+            if (opt.fixedStart) i = int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
+            pathBootstrapSample(scene, opt, i, (pick - (cdf[i] - f[i])), &chain.current);
+        }
+    }
+}
+
+// One pass of mlt: W H mutations shared among the chains.
+inline void tracePathPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, MltPass& mp, RayCount& rays) {
+    const long long N = (long long)scene.camera.width * scene.camera.height;
+    if (pass == 0) startPathChains(scene, opt, threads, mp, rays);
+    mp.image.assign(size_t(N), Vec3(0));
+    if (!(mp.b > 0)) return;
+    const long long C = (long long)mp.paths.size();
+    const RenderOptions walk = chainOptions(opt);
+    const LengthRange lengths{shortestChainPath(opt), opt.maxDepth + 1};
+    rays += parallelRows(int(C), threads, [&](int c, bool) {
+        PathChain& chain = mp.paths[c];
+        std::vector<Splat>& out = mp.chainSplats[c];
+        out.clear();
+        if (!(chain.current.f > 0)) return;
+        auto splat = [&](const ChainPath& x, double weight) { out.push_back({x.pixel, x.colour * float(x.f * weight)}); };
+        for (long long i = 0, n = mutationsOfChain(N, C, c); i < n; ++i) {
+            int which = 0;
+            double a = mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal, &which);
+            long long before = chain.accepted;
+            splatAndAccept(chain, a, splat);
+            int m = which == kBidirectional ? 0 : which == kLens ? 1 : 2;
+            ++chain.proposedBy[m];
+            chain.acceptedBy[m] += chain.accepted - before;
+        }
+        splat(chain.current, chain.currentWeight);
+        chain.currentWeight = 0;
+    });
+    std::vector<long long> mutations(C);
+    for (long long c = 0; c < C; ++c) mutations[c] = mutationsOfChain(N, C, c);
+    addChainSplats(mp, N, std::vector<int>(C, 0), mutations);
+}
+
+// The Metropolis methods: the pixel's value is its share of the chains' pass, and (short paths
+// apart) one bdpt sample of paths of one and two segments.
+inline Vec3 sampleMLT(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
+    Vec3 chains = pass.mlt->image[size_t(y) * scene.camera.width + x];
+    if (opt.chainShortPaths) return chains;
+    RenderOptions direct = opt;
+    direct.method = Method::BDPT;
+    direct.maxDepth = std::min(opt.maxDepth, 1);
+    return chains + sampleBDPT(scene, direct, pass, x, y, rng, out);
 }
 
 // == 8. Film, rendering loop, image files =======================================================
@@ -2355,6 +3022,7 @@ struct RenderResult {
     long long mergeableVertices = 0;  // vcm: in the grid, summed over passes
     double mltB = 0, mltBError = 0;   // mlt, mmlt: the final b (bootstrap and large steps) and its standard error
     long long mltAccepted = 0, mltProposed = 0;
+    long long mutationsAccepted[3] = {0, 0, 0}, mutationsProposed[3] = {0, 0, 0};  // mlt: bidirectional, lens, caustic
 };
 
 // 13 h 20 min, 4 min 05 s, 12.3 s: what a person reads at a glance.
@@ -2436,8 +3104,12 @@ inline PassData preparePass(const Scene& scene, const RenderOptions& opt, int pa
             traceVcmLightPass(scene, opt, pass, threads, storage.vcm, storage.rays);
             data.vcm = &storage.vcm;
             break;
-        case Method::MLT: case Method::MMLT:
+        case Method::PSSMLT: case Method::MMLT:
             traceMltPass(scene, opt, pass, threads, storage.mlt, storage.rays);
+            data.mlt = &storage.mlt;
+            break;
+        case Method::MLT:
+            tracePathPass(scene, opt, pass, threads, storage.mlt, storage.rays);
             data.mlt = &storage.mlt;
             break;
         case Method::PT: case Method::NEE: case Method::LT: case Method::BDPT: break;  // nothing before the pixels
@@ -2455,7 +3127,7 @@ inline SampleFunction sampleFunction(Method m) {
         case Method::IR: return sampleIR;
         case Method::BDPT: return sampleBDPT;
         case Method::VCM: return sampleVCM;
-        case Method::MLT: case Method::MMLT: return sampleMLT;
+        case Method::PSSMLT: case Method::MMLT: case Method::MLT: return sampleMLT;
     }
     return nullptr;  // not reached: every method has its case (-Wswitch checks)
 }
@@ -2560,8 +3232,10 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
     result.seconds = secondsSince(t0);
     result.mltB = storage.mlt.b;
     result.mltBError = storage.mlt.bStandardError;
-    result.mltAccepted = storage.mlt.total(&MltChain::accepted);
-    result.mltProposed = storage.mlt.total(&MltChain::proposed);
+    result.mltAccepted = storage.mlt.total(&MltChain::accepted, &PathChain::accepted);
+    result.mltProposed = storage.mlt.total(&MltChain::proposed, &PathChain::proposed);
+    for (const PathChain& c : storage.mlt.paths)
+        for (int m = 0; m < 3; ++m) result.mutationsAccepted[m] += c.acceptedBy[m], result.mutationsProposed[m] += c.proposedBy[m];
     bar.show(1, result.passes, 0);
     film.finish(result.passes, result);
     return result;
@@ -3147,7 +3821,7 @@ inline Scene loadScene(const std::string& path) {
 }
 
 // == 10. Command line ===========================================================================
-constexpr const char* kMethodNames[] = {"pt", "nee", "lt", "ir", "bdpt", "vcm", "mlt", "mmlt"};  // in Method's order
+constexpr const char* kMethodNames[] = {"pt", "nee", "lt", "ir", "bdpt", "vcm", "pssmlt", "mmlt", "mlt"};  // in Method's order
 constexpr const char* kHeuristicNames[] = {"balance", "power", "max", "uniform"};                   // in Heuristic's order
 constexpr const char* kRouletteNames[] = {"throughput", "albedo", "off"};                           // in Roulette's order
 inline const char* methodName(Method m) { return kMethodNames[int(m)]; }
@@ -3207,6 +3881,16 @@ struct ArgReader {
         }
         fail(std::string("unknown ") + what + " '" + printable(v) + "' (" + list + ")");
     }
+    int mutationList() {  // --mutations: MutationBits, the bidirectional mutation among them
+        std::string name = args[i], v = value(), word;
+        int bits = 0;
+        std::istringstream in(v);
+        while (std::getline(in, word, ','))
+            bits |= word == "bidir" ? kBidirectional : word == "lens" ? kLens : word == "caustic" ? kCaustic
+                  : (fail("unknown mutation '" + printable(word) + "' in " + name + " (bidir, lens, caustic)"), 0);
+        if (!(bits & kBidirectional)) fail(name + " needs bidir: only the bidirectional mutation changes a path's length or kind");
+        return bits;
+    }
 };
 
 // Every option once: its name and value, the methods it applies to (none listed: every method)
@@ -3220,11 +3904,12 @@ struct OptionSpec {
     const char* help;
     void (*apply)(CommandLine&, ArgReader&);
 };
-const std::vector<Method> kBdptFamily = {Method::BDPT, Method::VCM, Method::MLT, Method::MMLT};
-const std::vector<Method> kLightPathMethods = {Method::LT, Method::IR, Method::BDPT, Method::VCM, Method::MLT, Method::MMLT};
-const std::vector<Method> kMetropolis = {Method::MLT, Method::MMLT};
-constexpr const char* kBdptFamilyName = "--method bdpt, vcm, mlt and mmlt";
-constexpr const char* kLightPathName = "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, mmlt)";
+const std::vector<Method> kBdptFamily = {Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
+const std::vector<Method> kLightPathMethods = {Method::LT, Method::IR, Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
+const std::vector<Method> kMetropolis = {Method::PSSMLT, Method::MMLT, Method::MLT};
+const std::vector<Method> kPrimarySample = {Method::PSSMLT, Method::MMLT};
+constexpr const char* kBdptFamilyName = "--method bdpt, vcm, mlt, pssmlt and mmlt";
+constexpr const char* kLightPathName = "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, pssmlt, mmlt)";
 using CL = CommandLine;  // the table's setters are short lambdas
 using A = ArgReader;
 inline const std::vector<OptionSpec> kOptions = {
@@ -3239,11 +3924,14 @@ inline const std::vector<OptionSpec> kOptions = {
      "ir   (d) instant radiosity: camera paths gather virtual point lights\n"
      "bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)\n"
      "vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)\n"
-     "mlt  (see later) Metropolis light transport: Markov chains that mutate the\n"
-     "     random numbers of bdpt's whole sample (Kelemen's primary sample space);\n"
+     "mlt  (see later) Metropolis light transport (Veach's): Markov chains of\n"
+     "     paths, mutated by replacing a few vertices (bidirectional mutation) or\n"
+     "     by moving them a little (lens and caustic perturbations);\n"
      "     --spp N means N mutations per pixel on average\n"
-     "mmlt (see later) multiplexed MLT (pbrt's): the state also picks one path\n"
-     "     length and one strategy (s,t), weighted by bdpt's MIS",
+     "pssmlt (see later) primary-sample-space MLT (Kelemen's): chains that mutate\n"
+     "     the random numbers of bdpt's whole sample\n"
+     "mmlt (see later) multiplexed MLT (pbrt's): pssmlt whose state also picks one\n"
+     "     path length and one strategy (s,t), weighted by bdpt's MIS",
      [](CL& cl, A& a) { cl.opt.method = a.choice<Method>("method", kMethodNames); }},
     {"--mis", "", {Method::NEE}, "--method nee", "nee: weight light and BSDF sampling with the power heuristic",
      [](CL& cl, A&) { cl.opt.mis = true; }},
@@ -3252,8 +3940,8 @@ inline const std::vector<OptionSpec> kOptions = {
     {"--clamp", "C", {Method::IR}, "--method ir", "ir: bound the geometry term G by C (panel (e)); prints the energy removed",
      [](CL& cl, A& a) { cl.opt.clamp = float(a.number(1e-30, 1e30)); }},
     {"--heuristic", "H", kBdptFamily, kBdptFamilyName,
-     "bdpt, vcm, mlt, mmlt: MIS weights balance (default), power, max (the\n"
-     "slides' maximum heuristic) or uniform (1 / number of strategies able to\nmake the path)",
+     "bdpt, vcm, and the Metropolis methods' bdpt samples: MIS weights balance\n"
+     "(default), power, max (the slides' maximum heuristic) or uniform (1 /\nnumber of strategies able to make the path)",
      [](CL& cl, A& a) { cl.opt.heuristic = a.choice<Heuristic>("heuristic", kHeuristicNames); }},
     {"--radius", "R", {Method::VCM}, "--method vcm",
      "vcm: merging radius r_0 of the first pass (default: one pixel's footprint\n"
@@ -3271,24 +3959,34 @@ inline const std::vector<OptionSpec> kOptions = {
     {"--strategy-length", "K", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)",
      "longest path (segments) with per-strategy images (default 5)",
      [](CL& cl, A& a) { cl.strategyLength = int(a.integer(1, 12)); }},
-    {"--large-step", "P", kMetropolis, "--method mlt and mmlt",
-     "mlt, mmlt: probability of a large step, every number drawn afresh (0.3)",
+    {"--large-step", "P", kPrimarySample, "--method pssmlt and mmlt",
+     "pssmlt, mmlt: probability of a large step, every number drawn afresh (0.3)",
      [](CL& cl, A& a) { cl.opt.largeStep = float(a.number(0, 1)); }},
-    {"--sigma", "S", kMetropolis, "--method mlt and mmlt",
-     "mlt, mmlt: a small step moves each number by a normal of deviation S,\nwrapped into [0,1) (default 0.01)",
+    {"--sigma", "S", kPrimarySample, "--method pssmlt and mmlt",
+     "pssmlt, mmlt: a small step moves each number by a normal of deviation S,\nwrapped into [0,1) (default 0.01)",
      [](CL& cl, A& a) { cl.opt.sigma = float(a.number(1e-6, 10)); }},
-    {"--bootstrap", "N", kMetropolis, "--method mlt and mmlt",
-     "mlt, mmlt: independent samples that estimate the image's normalisation b\n"
-     "and choose the chains' starts in proportion to their brightness (default\n"
-     "100000; mmlt 1000000, spread over the path lengths)",
+    {"--bootstrap", "N", kMetropolis, "--method mlt, pssmlt and mmlt",
+     "mlt, pssmlt, mmlt: independent samples that estimate the image's\n"
+     "normalisation b and choose the chains' starts in proportion to their\n"
+     "brightness (default 100000 for pssmlt, 1000000 for mlt and mmlt; mmlt\nspreads them over the path lengths)",
      [](CL& cl, A& a) { cl.opt.bootstrap = int(a.integer(1, 1e8)); }},
-    {"--chains", "N", kMetropolis, "--method mlt and mmlt", "mlt, mmlt: Markov chains, each its own random stream (default 256)",
+    {"--chains", "N", kMetropolis, "--method mlt, pssmlt and mmlt",
+     "mlt, pssmlt, mmlt: Markov chains, each its own random stream (default 256)",
      [](CL& cl, A& a) { cl.opt.chains = int(a.integer(1, 1e6)); }},
+    {"--mutations", "LIST", {Method::MLT}, "--method mlt",
+     "mlt: Veach's mutations to use, among bidir, lens and caustic, comma-\n"
+     "separated; bidir is always among them (default bidir,lens,caustic)",
+     [](CL& cl, A& a) { cl.opt.mutations = a.mutationList(); }},
+    {"--chain-short-paths", "", kMetropolis, "--method mlt, pssmlt and mmlt",
+     "mlt, pssmlt, mmlt: the chains render paths of one and two segments too\n"
+     "(by default a bdpt sample per pixel renders them, and the chains the rest)",
+     [](CL& cl, A&) { cl.opt.chainShortPaths = true; }},
     {"--maxdepth", "D", {}, "", "at most D bounces (scattering vertices) per path (default 32)",
      [](CL& cl, A& a) { cl.opt.maxDepth = int(a.integer(0, 10000)); }},
     {"--roulette", "R", kLightPathMethods, kLightPathName,
-     "lt, ir, bdpt, vcm, mlt, mmlt: how subpaths end: throughput (q from the\n"
-     "throughput after --rr-start bounces, as pt and nee), albedo (q = the\n"
+     "lt, ir, bdpt, vcm and the Metropolis methods' bdpt samples (mlt's and\n"
+     "mmlt's own walks have chosen lengths): how subpaths end: throughput (q from\n"
+     "the throughput after --rr-start bounces, as pt and nee), albedo (q = the\n"
      "material's albedo at every vertex, counted in bdpt's MIS densities) or off\n"
      "(only --maxdepth); default albedo",
      [](CL& cl, A& a) { cl.opt.roulette = a.choice<Roulette>("roulette", kRouletteNames); }},
@@ -3309,11 +4007,11 @@ inline const std::vector<OptionSpec> kOptions = {
      "instead of the hit point's error bound (see tests/thin-gap.scene)",
      [](CL& cl, A&) { cl.conventions.fixedRayOffset = true; }},
     {"--delta-density-one", "", kBdptFamily, kBdptFamilyName,
-     "bdpt, vcm, mlt, mmlt: after a mirror or glass, store the MIS densities\n"
+     "bdpt, vcm, Metropolis: after a mirror or glass, store the MIS densities\n"
      "as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy\ns = 0",
      [](CL& cl, A&) { cl.conventions.deltaDensityOne = true; }},
-    {"--fixed-start", "", kMetropolis, "--method mlt and mmlt",
-     "mlt, mmlt: every chain starts from one fixed state (the first bootstrap\n"
+    {"--fixed-start", "", kMetropolis, "--method mlt, pssmlt and mmlt",
+     "mlt, pssmlt, mmlt: every chain starts from one fixed state (the first bootstrap\n"
      "sample that carries light) instead of one chosen in proportion to its\n"
      "brightness: start-up bias, visible at short runs",
      [](CL& cl, A&) { cl.opt.fixedStart = true; }},
@@ -3831,6 +4529,16 @@ inline void printMethodSummary(const CommandLine& cl, const Scene& scene, const 
                       methodName(cl.opt.method), r.mltB, r.mltBError, bootstrapSamples(cl.opt), cl.opt.chains,
                       100.0 * double(r.mltAccepted) / double(std::max(1LL, r.mltProposed)), r.mltProposed);
         out << text;
+    }
+    if (cl.opt.method == Method::MLT) {
+        out << "mlt: accepted";
+        const char* names[3] = {"bidirectional", "lens", "caustic"};
+        for (int m = 0; m < 3; ++m) {
+            std::snprintf(text, sizeof text, "%s %s %.1f%% of %lld", m ? "," : "", names[m],
+                          100.0 * double(r.mutationsAccepted[m]) / double(std::max(1LL, r.mutationsProposed[m])), r.mutationsProposed[m]);
+            out << text;
+        }
+        out << " (a proposal that could not be made counts as refused)\n";
     }
     if (cl.opt.method == Method::IR && cl.opt.clamp > 0)
         out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved() << "% of the energy gathered from VPLs\n";

@@ -44,3 +44,6 @@ namespace test_transport {
 namespace test_vcm {
 #include "test_vcm.cpp"
 }
+namespace test_veach {
+#include "test_veach.cpp"
+}

@@ -4,6 +4,7 @@
 #   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts,
 #                             the failure table and the reference check
 #   tests/charts.sh efficiency  make efficiency: error at equal samples and 1/(MSE x CPU-s)
+#   tests/charts.sh metropolisTable  make metropolis: the Markov chains against bdpt over 8 seeds
 #   tests/charts.sh panels    the six panels at 40 paths per pixel into build/panels/ (make panels)
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time,
 #                             the thin-gap figure, sds-point by pt, bdpt and vcm (sds-vcm.png), the
@@ -24,7 +25,7 @@ NOTES=${NOTES:-}
 FULL=${FULL:-$NOTES}
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
 REF_SECONDS=${REF_SECONDS:-90}    # per reference seed: far more than a run, so its noise is far below
-# per method and scene (156 runs: 4 s each take 11 minutes, 1.5 s about 4)
+# per method and scene (168 runs: 4 s each take 12 minutes, 1.5 s about 5)
 if [ -n "$FULL" ]; then RUN_SECONDS=${RUN_SECONDS:-4}; else RUN_SECONDS=${RUN_SECONDS:-1.5}; fi
 ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refraction shading-normals sds sds-point sds-ior1 door"
 SCENES=${SCENES:-$ALL_SCENES}
@@ -55,7 +56,7 @@ clampFor() {  # G is in the scene's units: a clamp that removes a visible share 
 }
 # One colour per method and one dash pattern per variant, the same in every chart (colour-blind
 # safe: Okabe-Ito): pt black, nee blue, lt sky blue, ir purple, bdpt vermilion, vcm bluish green,
-# mlt dark gold
+# the Metropolis methods dark gold (mlt solid, pssmlt dashed, mmlt dotted)
 # (lt was orange, too close to bdpt's vermilion to tell apart).
 lineStyle() {
   case $1 in
@@ -65,7 +66,8 @@ lineStyle() {
     bdpt-balance) echo "lc rgb '#d55e00' dt 1" ;; bdpt-power) echo "lc rgb '#d55e00' dt 2" ;;
     bdpt-max) echo "lc rgb '#d55e00' dt 3" ;;    bdpt-uniform) echo "lc rgb '#d55e00' dt 4" ;;
     vcm) echo "lc rgb '#009e73' dt 1" ;;
-    mlt) echo "lc rgb '#8c6d00' dt 1" ;;         mmlt) echo "lc rgb '#8c6d00' dt 2" ;;
+    mlt) echo "lc rgb '#8c6d00' dt 1" ;;         pssmlt) echo "lc rgb '#8c6d00' dt 2" ;;
+    mmlt) echo "lc rgb '#8c6d00' dt 3" ;;
     *) echo "lc rgb '#999999' dt 1" ;;
   esac
 }
@@ -74,12 +76,12 @@ styles() {  # every method's chart style: tests/test_notes.cpp checks that no tw
   methods cornell | while IFS='|' read -r label opts; do echo "$label $(lineStyle "$label")"; done
 }
 
-# The thirteen runs of every scene: label|options
+# The fourteen runs of every scene: label|options
 methods() {
   printf '%s\n' "pt|--method pt" "nee|--method nee" "nee-mis|--method nee --mis" "lt|--method lt" "ir|--method ir" \
     "ir-clamp|--method ir --clamp $(clampFor "$1")" "bdpt-balance|--method bdpt --heuristic balance" \
     "bdpt-power|--method bdpt --heuristic power" "bdpt-max|--method bdpt --heuristic max" \
-    "bdpt-uniform|--method bdpt --heuristic uniform" "vcm|--method vcm" "mlt|--method mlt" "mmlt|--method mmlt"
+    "bdpt-uniform|--method bdpt --heuristic uniform" "vcm|--method vcm" "mlt|--method mlt" "pssmlt|--method pssmlt" "mmlt|--method mmlt"
 }
 
 # The method that converges fastest on each scene at the chart resolution (measured: its two seeds
@@ -87,6 +89,7 @@ methods() {
 refMethod() {
   case $1 in
     cornell|indirect|shading-normals|door) echo lt ;;  # diffuse and glossy: one light path lands on many pixels
+    door-hidden) echo mlt ;;                      # every visible path passes the hidden gap
     cornell-glass) echo nee ;;
     refraction|sds) echo pt ;;                    # light arrives through glass: eye paths hit the sky/lamp
     sds-point) echo vcm ;;                        # only merging reaches L S D S E
@@ -97,11 +100,16 @@ refMethod() {
 # Extra options of a scene's reference run (none so far: sds-point's vcm keeps the default
 # radius, which after its ~17,000 passes has shrunk to 0.3 of a chart run's first one; a
 # quarter of it left the two seeds 0.038 apart in RMSE, as noisy as a chart run).
-refOptions() { :; }
+refOptions() { if [ "$1" = door-hidden ]; then echo "--bootstrap 8000000"; fi; }
+# door-hidden (not charted; make metropolis measures it at 64x64 and 128x128, averaging the
+# reference down) is made at 128x128, by mlt, the method that converges best there.
+refRes() { if [ "$1" = door-hidden ]; then echo 128x128; else echo "$RES"; fi; }
 refScene() { if [ "$1" = sds-ior1 ]; then echo tests/sds-ior1-open.scene; else echo "scenes/$1.scene"; fi; }
 
 # sds-point's reference (vcm) makes the fewest samples per second: 4 times the time.
-refSeconds() { if [ "$1" = sds-point ]; then echo $((REF_SECONDS * 4)); else echo "$REF_SECONDS"; fi; }
+refSeconds() {
+  case $1 in sds-point) echo $((REF_SECONDS * 4)) ;; door-hidden) echo $((REF_SECONDS * 18)) ;; *) echo "$REF_SECONDS" ;; esac
+}
 
 # Per scene: the chosen method with two seeds no chart run uses (charts use seed 1), refSeconds
 # each; the reference is their mean, and their difference measures its noise. The furnace has an
@@ -110,7 +118,9 @@ refSeconds() { if [ "$1" = sds-point ]; then echo $((REF_SECONDS * 4)); else ech
 refs() {
   local csv=scenes/refs/refs.csv row
   [ -f $csv ] || echo "scene,method,seconds_per_seed,spp_seed1,spp_seed2,rmse_between_seeds,relmse_between_seeds" > $csv
-  for s in $SCENES; do
+  local list=$SCENES
+  [ "$SCENES" != "$ALL_SCENES" ] || list="$ALL_SCENES door-hidden"
+  for s in $list; do
     if [ "$s" = furnace ]; then
       furnaceReference scenes/refs/furnace.pfm
       ./bdpt --average scenes/refs/furnace.pfm scenes/refs/furnace.pfm --out scenes/refs/furnace.png --overwrite
@@ -121,7 +131,7 @@ refs() {
       m=$(refMethod "$s"); secs=$(refSeconds "$s")
       for seed in 101 102; do
         # shellcheck disable=SC2086
-        ./bdpt "$(refScene "$s")" --method $m $(refOptions "$s") --res "$RES" --time "$secs" --seed $seed --quiet \
+        ./bdpt "$(refScene "$s")" --method $m $(refOptions "$s") --res "$(refRes "$s")" --time "$secs" --seed $seed --quiet \
           --out "$LOGS/refs/$s-$seed.png" --log "$LOGS/refs/$s-$seed.csv"
       done
       ./bdpt --average "$LOGS/refs/$s-101.pfm" "$LOGS/refs/$s-102.pfm" --out scenes/refs/$s.png --overwrite
@@ -169,10 +179,22 @@ efficiency() {
   [ -n "$NOTES" ] || return 0
   cp build/efficiency.md "$FIG/efficiency.md"
   splice "$FIG/efficiency.md" "$RECORD" efficiency
-  grep -E '^\| (door|cornell|cornell-glass|glass-box) \| (nee --mis|lt|bdpt|mlt|mmlt) \|' "$FIG/efficiency.md" |
+  grep -E '^\| (door|cornell|cornell-glass|glass-box) \| (nee --mis|lt|bdpt|mlt|pssmlt|mmlt) \|' "$FIG/efficiency.md" |
     { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'
       echo '|---|---|---|---|---|---|---|'; cat; } > build/metropolis-efficiency.md
   splice build/metropolis-efficiency.md lecture_notes/16-metropolis-sampling.md metropolis-efficiency
+}
+
+# make metropolis (tests/efficiency.cpp --metropolis): the Markov chains against bdpt, 8 seeds, into
+# build/metropolis.md; with NOTES=1 also lecture_notes/figures/metropolis.md, spliced into page 17.
+metropolisTable() {
+  make -s build/efficiency
+  echo "metropolis: 8 seeds of bdpt, mlt, pssmlt and mmlt on door-hidden and cornell, one thread: about 45 minutes"
+  ./build/efficiency --metropolis --seeds 8 --scenes door-hidden,cornell > build/metropolis.md.tmp && mv build/metropolis.md.tmp build/metropolis.md
+  cat build/metropolis.md
+  [ -n "$NOTES" ] || return 0
+  cp build/metropolis.md "$FIG/metropolis.md"
+  splice "$FIG/metropolis.md" lecture_notes/17-veach-mutations.md metropolis
 }
 
 plots() {  # the charts again from the runs' logs, without rendering (after a change of style)
@@ -303,7 +325,7 @@ figures() {
   metropolis
 }
 
-# Page 16's uneven convergence: bdpt, mlt and mmlt on the door at equal time, per region
+# Page 16's uneven convergence: bdpt, mlt, pssmlt and mmlt on the door at equal time, per region
 # (tests/uneven.cpp): its figure into $FIG, its table spliced into the page.
 metropolis() {
   make -s build/uneven

@@ -9,7 +9,7 @@
 // bdpt.cpp: their noise is the pixel filter's, the same for every camera-path method).
 // The table gives medians over the seeds, the efficiency 1/(MSE x CPU-s) relative to nee --mis,
 // and the share of the squared error in the pixels that see a mirror or glass (seesSpecular).
-//   build/efficiency [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT]
+//   build/efficiency [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT] [--metropolis]
 // --alternatives adds the Russian roulette variants (the measurements behind the choice in
 // bdpt's banner); --only keeps the methods whose label contains TEXT (and nee --mis,
 // the baseline).
@@ -42,6 +42,7 @@ static std::vector<Variant> variants(bool alternatives) {
         {"bdpt --heuristic uniform", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Uniform; })},
         {"vcm", with(Method::VCM)},
         {"mlt", with(Method::MLT)},
+        {"pssmlt", with(Method::PSSMLT)},
         {"mmlt", with(Method::MMLT)},
     };
     if (alternatives) {
@@ -89,9 +90,81 @@ static double specularShare(const Image& img, const Image& ref, const std::vecto
     return all > 0 ? inside / all : 0;
 }
 
+// --metropolis: the Markov chains where the slides place them (the showcase, door-hidden, whose
+// camera sees no path of fewer than three segments) and where they should lose (cornell), against
+// bdpt, with the variants that chain short paths too; 8 seeds at least (a chain's error varies
+// from seed to seed far more than an independent sampler's), at 64x64 with 1,024 and at 128x128
+// with 256 mutations (samples) per pixel. A reference of higher resolution is averaged down.
+static Image downsampled(const Image& ref, int width, int height) {
+    const int f = ref.width / width;
+    Image out(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            Vec3 s(0);
+            for (int j = 0; j < f; ++j)
+                for (int i = 0; i < f; ++i) s += ref.at(x * f + i, y * f + j);
+            out.at(x, y) = s / float(f * f);
+        }
+    return out;
+}
+
+static int metropolis(int seeds, const std::vector<std::string>& scenes, const std::string& only) {
+    std::vector<Variant> runs = {
+        {"bdpt", with(Method::BDPT)},
+        {"mlt", with(Method::MLT)},
+        {"pssmlt", with(Method::PSSMLT)},
+        {"mmlt", with(Method::MMLT)},
+        {"pssmlt --chain-short-paths", with(Method::PSSMLT, [](RenderOptions& o) { o.chainShortPaths = true; })},
+        {"mmlt --chain-short-paths", with(Method::MMLT, [](RenderOptions& o) { o.chainShortPaths = true; })},
+    };
+    if (!only.empty())  // bdpt, the yardstick, and the variants whose label contains `only`
+        runs.erase(std::remove_if(runs.begin() + 1, runs.end(), [&](const Variant& v) { return v.label.find(only) == std::string::npos; }),
+                   runs.end());
+    struct Size { int width, spp; };
+    std::printf("Equal samples (mutations) per pixel, %d seeds, one thread; medians of MSE and CPU seconds over the seeds; "
+                "efficiency 1/(MSE x CPU-s) against bdpt's; the lamp's pixels left out.\n\n", seeds);
+    std::printf("| scene | size | method | MSE | CPU-s | efficiency vs bdpt | mean vs reference |\n|---|---|---|---|---|---|---|\n");
+    for (const std::string& name : scenes) {
+        Scene scene;
+        Image full;
+        if (!sceneWithReference(name, scene, full)) return 2;
+        for (Size size : {Size{64, 1024}, Size{128, 256}}) {
+            if (full.width < size.width || full.width % size.width) continue;
+            setResolution(scene.camera, size.width, size.width);
+            Image ref = downsampled(full, size.width, size.width);
+            std::vector<std::vector<double>> mse(runs.size()), cpu(runs.size()), mean(runs.size());
+            size_t variants = runs.size();  // the short paths' lesson once, at 64x64
+            if (size.width != 64)
+                while (variants > 1 && runs[variants - 1].label.find("--chain-short-paths") != std::string::npos) --variants;
+            for (int seed = 1; seed <= seeds; ++seed)
+                for (size_t v = 0; v < variants; ++v) {
+                    RenderOptions o = runs[v].opt;
+                    o.spp = size.spp;
+                    o.seed = uint64_t(seed);
+                    double c0 = threadCpuSeconds();
+                    RenderResult r = render(scene, o);
+                    cpu[v].push_back(threadCpuSeconds() - c0);
+                    mse[v].push_back(maskedMse(r.image, ref));
+                    mean[v].push_back(imageMean(r.image));
+                    std::fprintf(stderr, "\r%s %dx%d: seed %d/%d, %zu/%zu   ", name.c_str(), size.width, size.width, seed, seeds, v + 1, variants);
+                }
+            std::fprintf(stderr, "\r%60s\r", "");
+            double base = 1 / (median(mse[0]) * median(cpu[0])), refMean = imageMean(ref);
+            for (size_t v = 0; v < variants; ++v) {
+                double m = median(mse[v]), c = median(cpu[v]), average = 0;
+                for (double x : mean[v]) average += x / mean[v].size();
+                std::printf("| %s | %dx%d, %d | %s | %.3g | %.2f | %.2fx | %+.1f%% |\n", name.c_str(), size.width, size.width, size.spp,
+                            runs[v].label.c_str(), m, c, 1 / (m * c) / base, 100 * (average / refMean - 1));
+            }
+            std::fflush(stdout);
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char** argv) {
     int spp = 256, seeds = 4;
-    bool alternatives = false;
+    bool alternatives = false, metropolisRows = false;
     std::string only;
     std::vector<std::string> scenes = {"cornell", "cornell-glass", "indirect", "glass-box", "sds-ior1", "door"};
     for (int i = 1; i < argc; ++i) {
@@ -99,17 +172,19 @@ int main(int argc, char** argv) {
         if (a == "--spp" && i + 1 < argc) spp = std::atoi(argv[++i]);
         else if (a == "--seeds" && i + 1 < argc) seeds = std::atoi(argv[++i]);
         else if (a == "--alternatives") alternatives = true;
+        else if (a == "--metropolis") metropolisRows = true;
         else if (a == "--only" && i + 1 < argc) only = argv[++i];
         else if (a == "--scenes" && i + 1 < argc) {
             scenes.clear();
             std::stringstream list(argv[++i]);
             for (std::string s; std::getline(list, s, ',');) scenes.push_back(s);
         } else {
-            std::fprintf(stderr, "usage: %s [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT] [--metropolis]\n", argv[0]);
             return 2;
         }
     }
     if (spp < 1 || seeds < 1) { std::fprintf(stderr, "efficiency: --spp and --seeds must be at least 1\n"); return 2; }
+    if (metropolisRows) return metropolis(seeds, scenes, only);
     std::vector<Variant> runs;
     for (const Variant& v : variants(alternatives))
         if (only.empty() || v.label.find(only) != std::string::npos || v.label == "nee --mis") runs.push_back(v);

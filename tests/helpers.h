@@ -64,13 +64,27 @@ inline RenderOptions quietOptions(Method m, int spp, uint64_t seed = 1) {
     return o;
 }
 
-// Mean of each of grid x grid image regions (all channels), per pass: passes are independent,
-// so the spread of a region's pass means gives an honest standard error, even for light
-// tracing, whose one light path lands in many pixels of a pass.
 struct RegionEstimate {
     std::vector<double> mean, stdError;  // per region; the last entry is the whole image
 };
 
+// Region means over seeds (per region, one value per seed), with standard errors from their spread.
+inline RegionEstimate regionsOverSeeds(const std::vector<std::vector<double>>& perSeed) {
+    RegionEstimate e;
+    for (const auto& v : perSeed) {
+        double m = 0, q = 0;
+        for (double x : v) m += x;
+        m /= v.size();
+        for (double x : v) q += sqr(x - m);
+        e.mean.push_back(m);
+        e.stdError.push_back(std::sqrt(q / (v.size() - 1) / v.size()));
+    }
+    return e;
+}
+
+// Mean of each of grid x grid image regions (all channels), per pass: passes are independent,
+// so the spread of a region's pass means gives an honest standard error, even for light
+// tracing, whose one light path lands in many pixels of a pass.
 inline RegionEstimate renderRegions(const Scene& scene, RenderOptions opt, int grid, RenderResult* out = nullptr) {
     const int W = scene.camera.width, H = scene.camera.height, R = grid * grid + 1;
     std::vector<std::vector<double>> samples(R);
@@ -88,16 +102,42 @@ inline RegionEstimate renderRegions(const Scene& scene, RenderOptions opt, int g
     };
     RenderResult result = render(scene, opt);
     if (out) *out = result;
-    RegionEstimate e;
-    for (const auto& v : samples) {
-        double m = 0, q = 0;
-        for (double x : v) m += x;
-        m /= v.size();
-        for (double x : v) q += (x - m) * (x - m);
-        e.mean.push_back(m);
-        e.stdError.push_back(std::sqrt(q / (v.size() - 1) / v.size()));
+    return regionsOverSeeds(samples);
+}
+
+// Region means (grid x grid, all channels) of `seeds` independent renders, with their standard
+// errors from the spread over seeds.
+inline RegionEstimate overSeeds(const Scene& scene, RenderOptions opt, int grid, int seeds) {
+    const int W = scene.camera.width, H = scene.camera.height, R = grid * grid;
+    std::vector<std::vector<double>> perSeed(R);
+    for (int s = 0; s < seeds; ++s) {
+        opt.seed = 1000 + s;
+        Image img = render(scene, opt).image;
+        std::vector<double> sum(R, 0);
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) sum[(y * grid / H) * grid + x * grid / W] += average(img.at(x, y));
+        for (int r = 0; r < R; ++r) perSeed[r].push_back(sum[r] / (double(W) * H / R));
     }
+    return regionsOverSeeds(perSeed);
+}
+
+inline RegionEstimate referenceRegions(const std::string& name, int grid) {
+    Image ref;
+    REQUIRE(readPFM("scenes/refs/" + name + ".pfm", ref));
+    RegionEstimate e;
+    std::vector<double> sum(grid * grid, 0);
+    for (int y = 0; y < ref.height; ++y)
+        for (int x = 0; x < ref.width; ++x) sum[(y * grid / ref.height) * grid + x * grid / ref.width] += average(ref.at(x, y));
+    for (double s : sum) e.mean.push_back(s / (double(ref.width) * ref.height / (grid * grid))), e.stdError.push_back(0);
     return e;
+}
+
+// Sum over regions of z^2, z = (estimate - reference) / its standard error: about the number of
+// regions when the estimate is unbiased (the references' own noise is far below these errors).
+inline double chiSquare(const RegionEstimate& e, const RegionEstimate& ref) {
+    double c = 0;
+    for (size_t r = 0; r < e.mean.size(); ++r) c += sqr((e.mean[r] - ref.mean[r]) / std::max(1e-12, e.stdError[r]));
+    return c;
 }
 
 // The largest |difference| / standard error over the regions of two independent estimates.

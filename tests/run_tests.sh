@@ -38,6 +38,7 @@ test_core hits, BSDFs, the furnace, options, bad input
 test_first_hour a first hour's mistakes, each with its message
 test_metrics error metrics, --ratio, the failure table
 test_mlt Metropolis: the sampler, steps, regions over seeds
+test_veach Veach's mutations: acceptance against T from scratch
 test_notes the notes: citations, commands, formulas, numbers
 test_numerics ray offsets, scales, film coordinates, MIS ranges
 test_robustness malformed scenes, Ctrl-C, numerical edge cases

@@ -91,11 +91,11 @@ TEST_CASE("furnace: L = Le / (1 - a) = 2 within 1% for every method; truncated a
     Scene scene = sceneAt("scenes/furnace.scene", 32, 32);
     struct Run { Method m; bool mis; };
     for (Run run : {Run{Method::PT, false}, Run{Method::NEE, false}, Run{Method::NEE, true}, Run{Method::LT, false},
-                    Run{Method::IR, false}, Run{Method::BDPT, false}, Run{Method::VCM, false}, Run{Method::MLT, false},
-                    Run{Method::MMLT, false}}) {
+                    Run{Method::IR, false}, Run{Method::BDPT, false}, Run{Method::VCM, false}, Run{Method::PSSMLT, false},
+                    Run{Method::MMLT, false}, Run{Method::MLT, false}}) {
         RenderOptions o = quietOptions(run.m, 64);
         o.mis = run.mis;  // nee --mis: a light density without the light's cosine gave 2.19
-        o.bootstrap = run.m == Method::MMLT ? 200000 : 20000;  // mlt's image mean is its b: the bootstrap's and the large steps'
+        o.bootstrap = run.m == Method::MMLT ? 200000 : 20000;  // pssmlt's image mean is its b: the bootstrap's and the large steps'
         RenderResult r = render(scene, o);
         CAPTURE(int(run.m));
         CAPTURE(run.mis);

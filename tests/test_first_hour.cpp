@@ -111,16 +111,16 @@ TEST_CASE("--strategies DIR is created, with its parents") {
 TEST_CASE("options that the method would ignore are refused, naming the method they belong to") {
     struct Case { std::vector<std::string> args; std::string message; };
     for (const Case& c : std::vector<Case>{
-             {{"--method", "pt", "--heuristic", "max"}, "--heuristic applies to --method bdpt, vcm, mlt and mmlt, not to --method pt"},
+             {{"--method", "pt", "--heuristic", "max"}, "--heuristic applies to --method bdpt, vcm, mlt, pssmlt and mmlt, not to --method pt"},
              {{"--radius", "0.1"}, "--radius applies to --method vcm, not to --method bdpt"},
              {{"--method", "vcm", "--alpha", "0"}, "option --alpha needs a number from 0.001 to 1, got '0'"},
              {{"--mis"}, "--mis applies to --method nee, not to --method bdpt"},
              {{"--method", "nee", "--clamp", "1"}, "--clamp applies to --method ir, not to --method nee"},
              {{"--method", "lt", "--vpls", "4"}, "--vpls applies to --method ir, not to --method lt"},
-             {{"--method", "nee", "--roulette", "off"}, "--roulette applies to the methods that trace light paths (lt, ir, bdpt, vcm, mlt, mmlt)"},
-             {{"--method", "bdpt", "--chains", "8"}, "--chains applies to --method mlt and mmlt, not to --method bdpt"},
-             {{"--method", "vcm", "--fixed-start"}, "--fixed-start applies to --method mlt and mmlt, not to --method vcm"},
-             {{"--method", "mlt", "--large-step", "1.5"}, "option --large-step needs a number from 0 to 1, got '1.5'"},
+             {{"--method", "nee", "--roulette", "off"}, "--roulette applies to the methods that trace light paths (lt, ir, bdpt, vcm, mlt, pssmlt, mmlt)"},
+             {{"--method", "bdpt", "--chains", "8"}, "--chains applies to --method mlt, pssmlt and mmlt, not to --method bdpt"},
+             {{"--method", "vcm", "--fixed-start"}, "--fixed-start applies to --method mlt, pssmlt and mmlt, not to --method vcm"},
+             {{"--method", "pssmlt", "--large-step", "1.5"}, "option --large-step needs a number from 0 to 1, got '1.5'"},
              {{"--method", "pt", "--no-adjoint-correction"}, "--no-adjoint-correction applies to the methods that trace light paths"},
              {{"--strategy-length", "3"}, "--strategy-length applies with --strategies DIR"},
              {{"--time", "1", "--spp", "4"}, "--time and --spp both given"},

@@ -4,8 +4,8 @@
 //     relRMSE(region) = sqrt(mean over seeds and pixels of (x - ref)^2) / mean of ref there;
 // its unevenness = the largest region's relRMSE over the median region's (1 would be perfectly
 // even). Writes OUT/uneven-SCENE.png: the reference, then each method's map (grey: the region's
-// relRMSE on one scale for all, white at the largest), then mlt's relRMSE over bdpt's in the
-// colours of --ratio (blue: mlt's error smaller, red: larger, full colour at a factor of 2).
+// relRMSE on one scale for all, white at the largest), then mlt's (Veach's) relRMSE over bdpt's
+// in the colours of --ratio (blue: mlt's error smaller, red: larger, full colour at a factor of 2).
 //   build/uneven [--scene NAME] [--seconds S] [--seeds K] [--grid G] [--out DIR]
 #include "bench.h"
 
@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
     std::vector<double> refSum(R, 0), pixels(R, 0);
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) refSum[region(x, y)] += average(ref.at(x, y)), pixels[region(x, y)] += 1;
-    const std::vector<Method> methods = {Method::BDPT, Method::MLT, Method::MMLT};
+    const std::vector<Method> methods = {Method::BDPT, Method::MLT, Method::PSSMLT, Method::MMLT};
     std::vector<std::vector<double>> squared(methods.size(), std::vector<double>(R, 0));
     std::vector<double> passes(methods.size(), 0);
     for (int seed = 1; seed <= seeds; ++seed)
@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
             o.threads = 1;
             o.seconds = seconds;
             o.seed = uint64_t(seed);
+            if (o.method != Method::PSSMLT) o.bootstrap = 100000;  // mlt's and mmlt's default, 1,000,000, would take most of a 2 s run
             RenderResult r = render(scene, o);
             passes[m] += r.passes;
             for (int y = 0; y < H; ++y)
@@ -94,7 +95,7 @@ int main(int argc, char** argv) {
     place(toSRGBBytes(colours, 0), tiles - 1);
     std::string png = outDir + "/uneven-" + name + ".png";
     if (!writePNGBytes(canvas, canvasW, canvasH, png)) { std::fprintf(stderr, "uneven: cannot write %s\n", png.c_str()); return 1; }
-    std::printf("\nwrote %s: the reference, relative RMSE per region of bdpt, mlt and mmlt (white: %.3f), mlt's over bdpt's\n",
+    std::printf("\nwrote %s: the reference, relative RMSE per region of bdpt, mlt, pssmlt and mmlt (white: %.3f), mlt's over bdpt's\n",
                 png.c_str(), largest);
     return 0;
 }
