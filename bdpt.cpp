@@ -2688,6 +2688,7 @@ inline double mutate(const Scene& scene, const RenderOptions& walk, LengthRange 
     return std::min(1.0, ratio * count / bitCount(applicableMutations(scene, y, walk.mutations)));
 }
 
+// One of mlt's chains: its own random stream, its path and the one proposed from it.
 struct PathChain {
     Rng rng;
     ChainPath current, proposal;
@@ -2733,8 +2734,8 @@ struct MltPass {
 // comes from its bootstrap alone (pssmlt's and mmlt's large steps keep adding to theirs), and its
 // error scales the whole image. mmlt spreads its samples over the path lengths, one strategy
 // each, and a length whose b_k the bootstrap leaves at 0 gets no chain, so no large step ever
-// corrects it: on sds, where only s = 0 makes the lamp seen through glass (k = 3), 100,000
-// samples (3,200 a length) left that length dark in 2 of 3 seeds (-68% and -69%).
+// corrects it: a length whose light one strategy alone finds (sds's lamp seen through glass,
+// s = 0 only) needs tens of thousands of samples to be seen at all (notes, page 17).
 inline int bootstrapSamples(const RenderOptions& opt) {
     return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::PSSMLT ? 100000 : 1000000;
 }
