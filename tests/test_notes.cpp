@@ -473,7 +473,7 @@ TEST_CASE("the slopes and biases the pages quote are the failure table's (make f
     auto firefly = [&](const char* m) { return fireflies.at(std::string("cornell|") + m); };
     std::string p1 = flatPage("01-path-sampling-techniques.md"), p12 = flatPage("12-comparison-with-path-tracing.md"),
                 p14 = flatPage("14-power-versus-radiance.md"), p15 = flatPage("15-vertex-merging.md"),
-                a = flatPage("appendix-a-speed-and-accuracy.md");
+                p16 = flatPage("16-metropolis-sampling.md"), a = flatPage("appendix-a-speed-and-accuracy.md");
     std::vector<std::pair<const std::string*, std::string>> quotes = {
         {&p1, "lt flattens at once (bias " + bias("cornell-glass", "lt")},
         {&p1, "stays high (bias " + bias("cornell-glass", "ir")},
@@ -495,6 +495,9 @@ TEST_CASE("the slopes and biases the pages quote are the failure table's (make f
                  "; " + bias("indirect", "ir --clamp") + " on indirect"},
         {&a, "from the ceiling, slope " + slope("indirect", "ir --clamp") + ")"},
         {&a, "(cornell: mlt " + slope("cornell", "mlt") + ", mmlt " + slope("cornell", "mmlt") + ")"},
+        {&p16, "the slopes on cornell-glass are " + slope("cornell-glass", "pssmlt") + " (pssmlt), " + slope("cornell-glass", "mmlt") +
+                   " (mmlt) and " + slope("cornell-glass", "mlt") + " (mlt)"},
+        {&p16, "where bdpt's is " + slope("cornell-glass", "bdpt balance")},
         {&a, "has one of the smallest ratios (" + firefly("pt") + "), and ir, bdpt and nee, good elsewhere, ratios " +
                  std::to_string(int(std::lround(std::stod(firefly("nee")) / std::stod(firefly("pt"))))) + " to " +
                  std::to_string(int(std::lround(std::stod(firefly("ir")) / std::stod(firefly("pt"))))) + " times as large (" + firefly("ir") + ", " +
