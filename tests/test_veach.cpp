@@ -271,7 +271,7 @@ TEST_CASE("the lens and caustic perturbations' acceptance is that of their moves
     auto thetaDensity = [&](const ChainPath& p, int l, double theta) {
         double chain = 0;
         for (int i = l; i < p.k() - 1; ++i) chain += length(p.x[i + 1].sp.p - p.x[i].sp.p);
-        double radiansPerPixel = 2 * std::atan(std::tan(cam.fovDegrees * kPi / 360)) / cam.height;
+        double radiansPerPixel = cam.fovDegrees * kPi / 180 / cam.height;  // the field of view spans the height
         double scale = radiansPerPixel * length(p.x[p.k()].sp.p - p.x[p.k() - 1].sp.p) / chain;
         double t1 = 0.1 * scale, t2 = std::min(std::sqrt(0.05 * cam.width * cam.height / kPi) * scale, kPi / 2.0);
         return theta >= t1 && theta <= t2 ? 1 / (2 * kPi * std::log(t2 / t1) * theta * std::sin(theta)) : 0;
