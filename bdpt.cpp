@@ -2518,9 +2518,10 @@ inline int pickIndex(int first, int last, Rng& rng, const Pick& weight) {  // in
 inline double bidirectionalMutation(const Scene& scene, const RenderOptions& walk, LengthRange r, const ChainPath& x, Rng& rng, ChainPath& y) {
     thread_local std::vector<PathVertex> light, camera;
     const int k = x.k();
-    int kd = pickIndex(1, k + 1, rng, [&](int d) { return deletionProbability(d, k); });
-    int ka = pickIndex(1, r.max + 1, rng, [&](int e) { return additionProbability(e, kd, k, r); });
-    if (kd < 0 || ka < 0) return 0;
+    // Drawn from the unnormalised weights (pickIndex normalises); T uses the probabilities.
+    int kd = pickIndex(1, k + 1, rng, deletionWeight);
+    int ka = pickIndex(1, r.max + 1, rng, [&](int e) { return additionAllowed(e, kd, k, r) ? additionWeight(e, kd) : 0.0; });
+    if (ka < 0) return 0;
     int a = pickIndex(0, k + 1 - kd, rng, [&](int i) { return double(deletionAllowed(scene, x, i, kd, ka)); });
     if (a < 0) return 0;
     const int b = a + kd - 1, n = ka - 1, s = std::min(int(rng.uniform() * (n + 1)), n);
@@ -2721,6 +2722,7 @@ struct MltPass {
     std::vector<PathChain> paths;      // mlt
     std::vector<std::vector<Splat>> chainSplats;  // this pass's, per chain
     std::vector<Vec3> image;                      // this pass's: b sum h/f over W H mutations
+    RenderOptions shortPaths;                     // the per-pixel bdpt sample of paths of 1 and 2 segments
     long long total(long long MltChain::*count, long long PathChain::*pathCount) const {  // accepted or proposed
         long long n = 0;
         for (const MltChain& c : chains) n += c.*count;
@@ -2976,15 +2978,21 @@ inline void tracePathPass(const Scene& scene, const RenderOptions& opt, int pass
     addChainSplats(mp, N, std::vector<int>(C, 0), mutations);
 }
 
+// The options of that bdpt sample: paths of one and two segments.
+inline RenderOptions shortPathOptions(const RenderOptions& opt) {
+    RenderOptions o = opt;
+    o.method = Method::BDPT;
+    o.maxDepth = std::min(opt.maxDepth, 1);
+    o.onPass = nullptr;
+    return o;
+}
+
 // The Metropolis methods: the pixel's value is its share of the chains' pass, and (short paths
 // apart) one bdpt sample of paths of one and two segments.
 inline Vec3 sampleMLT(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
     Vec3 chains = pass.mlt->image[size_t(y) * scene.camera.width + x];
     if (opt.chainShortPaths) return chains;
-    RenderOptions direct = opt;
-    direct.method = Method::BDPT;
-    direct.maxDepth = std::min(opt.maxDepth, 1);
-    return chains + sampleBDPT(scene, direct, pass, x, y, rng, out);
+    return chains + sampleBDPT(scene, pass.mlt->shortPaths, pass, x, y, rng, out);
 }
 
 // == 8. Film, rendering loop, image files =======================================================
@@ -3105,12 +3113,10 @@ inline PassData preparePass(const Scene& scene, const RenderOptions& opt, int pa
             traceVcmLightPass(scene, opt, pass, threads, storage.vcm, storage.rays);
             data.vcm = &storage.vcm;
             break;
-        case Method::PSSMLT: case Method::MMLT:
-            traceMltPass(scene, opt, pass, threads, storage.mlt, storage.rays);
-            data.mlt = &storage.mlt;
-            break;
-        case Method::MLT:
-            tracePathPass(scene, opt, pass, threads, storage.mlt, storage.rays);
+        case Method::PSSMLT: case Method::MMLT: case Method::MLT:
+            if (opt.method == Method::MLT) tracePathPass(scene, opt, pass, threads, storage.mlt, storage.rays);
+            else traceMltPass(scene, opt, pass, threads, storage.mlt, storage.rays);
+            storage.mlt.shortPaths = shortPathOptions(opt);
             data.mlt = &storage.mlt;
             break;
         case Method::PT: case Method::NEE: case Method::LT: case Method::BDPT: break;  // nothing before the pixels
