@@ -86,6 +86,7 @@ inline float sqr(float x) { return x * x; }
 // sampling (section 7 (h)) can hand a walker the numbers of its chain's state instead.
 struct PrimaryStream;
 float replayUniform(PrimaryStream& stream);
+constexpr uint32_t kLowDiscrepancyDimensions = 32;  // below: dimensions drawn from a Sobol point
 struct Rng {
     uint64_t state = 0, inc = 1;
     PrimaryStream* replay = nullptr;  // pssmlt, mmlt: numbers come from this state (and are recorded there)
@@ -95,9 +96,20 @@ struct Rng {
         uint32_t shifted = uint32_t(((old >> 18u) ^ old) >> 27u), rot = uint32_t(old >> 59u);
         return (shifted >> rot) | (shifted << ((-rot) & 31));
     }
+    // Low-discrepancy mode (sampleRng sets it): the next number is coordinate `dimension` of this
+    // sample's Sobol point (section 1, below), scrambled by the stream's own `scrambleKey`.
+    bool lowDiscrepancy = false, scrambled = true;
+    uint32_t dimension = 0;
+    uint64_t scrambleKey = 0;
+    uint32_t sobolDigits[kLowDiscrepancyDimensions] = {};  // the point, unscrambled, in digit order
+    inline float lowDiscrepancyUniform();
     // [0,1), 24 exact bits. Inlined always: it is called for every number every method draws, and
     // the replay branch makes it look too large to GCC's inliner.
-    [[gnu::always_inline]] float uniform() { return replay ? replayUniform(*replay) : float(nextUint() >> 8) * 0x1p-24f; }
+    [[gnu::always_inline]] float uniform() {
+        if (replay) return replayUniform(*replay);
+        if (lowDiscrepancy) return lowDiscrepancyUniform();
+        return float(nextUint() >> 8) * 0x1p-24f;
+    }
 };
 inline uint64_t mix64(uint64_t z) {  // SplitMix64 finaliser: decorrelates nearby seeds
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
@@ -110,6 +122,114 @@ inline Rng makeRng(uint64_t seed, uint64_t a, uint64_t b) {
     r.state = mix64(mix64(seed + 0x632BE59BD9B4E019ULL) ^ (a * 0xD1B54A32D192ED03ULL) ^ b);
     r.nextUint();
     return r;
+}
+
+// -- Quasi-random numbers ("stratification"). N independent samples leave gaps and clumps: the
+// error of their mean falls as N^-1/2. N points that fill the unit square evenly, one in every
+// cell of every grid of N equal cells (1 x 1/N, 2 x 1/(N/2), ...: the "elementary intervals"),
+// miss no region of a smooth integrand, and the error falls faster: with Owen's scramble (below)
+// as N^-3/2 for smooth 2D integrands, about N^-1 across an edge such as a shadow's.
+// A path's numbers are one point in many dimensions (film position, then per vertex the lamp
+// choice, the lamp point, the BSDF's direction, roulette), all of which can be stratified jointly:
+// the Sobol sequence, dimension d the digital construction x_d(i) = C_d i (i's bits times a
+// binary matrix, read as a binary fraction), is such that its first 2^m points, and every
+// aligned block of 2^m after them, fill the elementary intervals of every low-dimensional
+// projection nearly evenly. Dimension 0 is the radical inverse (C_0 = identity); the others'
+// matrices come from a primitive polynomial and initial direction numbers m_k, for which we take
+// Joe and Kuo's (2008), chosen to make the 2D projections even.
+// Each pixel gets the sequence randomised by a nested uniform scramble (Owen 1995), drawn from the
+// seed: every binary digit of every coordinate flipped by a random function of the digits before
+// it. That keeps the stratification, makes each point uniform in [0,1)^d (the estimator stays
+// unbiased) and pixels' errors independent, as the tests over seeds assume. Dimensions past
+// kLowDiscrepancyDimensions (deep bounces, a small share of the image) come from PCG32 again.
+
+constexpr uint32_t reverseBits(uint32_t x) {
+    x = (x << 16) | (x >> 16);
+    x = ((x & 0x00FF00FFu) << 8) | ((x >> 8) & 0x00FF00FFu);
+    x = ((x & 0x0F0F0F0Fu) << 4) | ((x >> 4) & 0x0F0F0F0Fu);
+    x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
+    return ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
+}
+
+// Dimension d >= 1: the primitive polynomial x^s + a_1 x^(s-1) + ... + a_(s-1) x + 1 (degree s,
+// coefficients a_1..a_(s-1) as the bits of `a`, a_1 the highest) and m_1..m_s (odd, m_k < 2^k).
+struct SobolPolynomial {
+    uint32_t degree, a, m[7];
+};
+constexpr SobolPolynomial kJoeKuo[kLowDiscrepancyDimensions - 1] = {
+    {1, 0, {1}}, {2, 1, {1, 3}}, {3, 1, {1, 3, 1}}, {3, 2, {1, 1, 1}}, {4, 1, {1, 1, 3, 3}},
+    {4, 4, {1, 3, 5, 13}}, {5, 2, {1, 1, 5, 5, 17}}, {5, 4, {1, 1, 5, 5, 5}}, {5, 7, {1, 1, 7, 11, 19}},
+    {5, 11, {1, 1, 5, 1, 1}}, {5, 13, {1, 1, 1, 3, 11}}, {5, 14, {1, 3, 5, 5, 31}},
+    {6, 1, {1, 3, 3, 9, 7, 49}}, {6, 13, {1, 1, 1, 15, 21, 21}}, {6, 16, {1, 3, 1, 13, 27, 49}},
+    {6, 19, {1, 1, 1, 15, 7, 5}}, {6, 22, {1, 3, 1, 15, 13, 25}}, {6, 25, {1, 1, 5, 5, 19, 61}},
+    {7, 1, {1, 3, 7, 11, 23, 15, 103}}, {7, 4, {1, 3, 7, 13, 13, 15, 69}}, {7, 7, {1, 1, 3, 13, 7, 35, 63}},
+    {7, 8, {1, 3, 5, 9, 1, 25, 53}}, {7, 14, {1, 3, 1, 13, 9, 35, 107}}, {7, 19, {1, 3, 1, 5, 27, 61, 31}},
+    {7, 21, {1, 1, 5, 11, 19, 41, 61}}, {7, 28, {1, 3, 5, 3, 3, 13, 69}}, {7, 31, {1, 1, 7, 13, 1, 19, 1}},
+    {7, 32, {1, 3, 7, 5, 13, 19, 59}}, {7, 37, {1, 1, 3, 9, 25, 29, 41}}, {7, 41, {1, 3, 5, 13, 23, 1, 55}},
+    {7, 42, {1, 3, 7, 3, 13, 59, 17}},
+};
+// The generator matrices' columns, in digit order (bit j = the fraction's digit j+1, so that
+// scrambleDigits below sees "earlier digits" as lower bits). Column k is m_k / 2^k, and past the
+// initial ones Sobol's recurrence m_k = 2 a_1 m_(k-1) ^ 4 a_2 m_(k-2) ^ ... ^ 2^s m_(k-s) ^ m_(k-s).
+struct SobolMatrices {
+    uint32_t column[kLowDiscrepancyDimensions][32];
+};
+constexpr SobolMatrices makeSobolMatrices() {
+    SobolMatrices C{};
+    for (uint32_t k = 0; k < 32; ++k) C.column[0][k] = 1u << k;
+    for (uint32_t d = 1; d < kLowDiscrepancyDimensions; ++d) {
+        const SobolPolynomial& p = kJoeKuo[d - 1];
+        uint32_t m[32] = {};
+        for (uint32_t k = 0; k < 32; ++k) {
+            if (k < p.degree) {
+                m[k] = p.m[k];
+            } else {
+                m[k] = m[k - p.degree] ^ (m[k - p.degree] << p.degree);
+                for (uint32_t j = 1; j < p.degree; ++j)
+                    if ((p.a >> (p.degree - 1 - j)) & 1) m[k] ^= m[k - j] << j;
+            }
+            C.column[d][k] = reverseBits(m[k] << (31 - k));
+        }
+    }
+    return C;
+}
+constexpr SobolMatrices kSobol = makeSobolMatrices();
+
+// The nested uniform scramble in digit order: each bit flipped by a hash of the bits below it.
+// Adding the seed and xor-ing x with even multiples of itself does exactly that (carries move up,
+// never down): Laine and Karras's hash (2011), with Burley's constants (2020).
+inline uint32_t scrambleDigits(uint32_t digits, uint32_t seed) {
+    digits += seed;
+    digits ^= digits * 0x6C50B47Cu;
+    digits ^= digits * 0xB82F1E52u;
+    digits ^= digits * 0xC7AFE638u;
+    digits ^= digits * 0x8D22F6E6u;
+    return digits;
+}
+// Sobol point `index` in digit order: the xor of the columns of C_d picked by index's bits. Every
+// pixel of a pass draws the same point (scrambled its own way), so each thread keeps the last.
+inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
+    thread_local uint32_t cachedIndex = ~0u, cached[kLowDiscrepancyDimensions];
+    if (index != cachedIndex) {
+        for (uint32_t d = 0; d < kLowDiscrepancyDimensions; ++d) {
+            cached[d] = 0;
+            for (uint32_t i = index, k = 0; i; i >>= 1, ++k)
+                if (i & 1) cached[d] ^= kSobol.column[d][k];
+        }
+        cachedIndex = index;
+    }
+    std::copy(cached, cached + kLowDiscrepancyDimensions, digits);
+}
+// The next coordinate, as a fraction in [0,1). Not scrambled: the deliberate mistake --no-scramble,
+// the same points in every pixel.
+inline float Rng::lowDiscrepancyUniform() {
+    if (dimension >= kLowDiscrepancyDimensions) return float(nextUint() >> 8) * 0x1p-24f;
+    uint32_t digits = sobolDigits[dimension++];
+    if (scrambled) {  // each dimension's seed: the next step of an LCG started at the stream's key
+        scrambleKey = scrambleKey * 6364136223846793005ULL + 1442695040888963407ULL;
+        digits = scrambleDigits(digits, uint32_t(scrambleKey >> 32));
+    }
+    return float(reverseBits(digits) >> 8) * 0x1p-24f;
 }
 
 // Orthonormal frame around a unit normal (Duff et al. 2017), to express BSDFs locally.
@@ -943,7 +1063,10 @@ inline Ray cameraRay(const Camera& cam, float filmX, float filmY) {  // film coo
 struct FilmPoint {
     float x, y;
 };
-inline FilmPoint jitteredFilmPoint(int x, int y, Rng& rng) { return {filmCoordinate(x, rng.uniform()), filmCoordinate(y, rng.uniform())}; }
+inline FilmPoint jitteredFilmPoint(int x, int y, Rng& rng) {
+    float u1 = rng.uniform(), u2 = rng.uniform();
+    return {filmCoordinate(x, u1), filmCoordinate(y, u2)};
+}
 inline Ray pixelRay(const Camera& cam, int x, int y, Rng& rng) {
     FilmPoint f = jitteredFilmPoint(x, y, rng);
     return cameraRay(cam, f.x, f.y);
@@ -1005,6 +1128,7 @@ inline bool isMetropolis(Method m) { return m == Method::PSSMLT || m == Method::
 // Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
 // the depth limit. bdpt's banner says which it uses and why.
 enum class Roulette { Throughput, Albedo, Off };
+enum class Sampler { Sobol, Random };  // section 1: padded, Owen-scrambled Sobol points, or PCG32 alone
 enum class Heuristic { Balance, Power, Max, Uniform };  // bdpt's MIS heuristics (its banner)
 
 struct RenderOptions {
@@ -1033,9 +1157,24 @@ struct RenderOptions {
     int mutations = 7;         // mlt: which of Veach's mutations run (bits: 1 bidirectional, 2 lens, 4 caustic)
     bool chainShortPaths = false;  // Metropolis: the chains render paths of 1 and 2 segments too (else a bdpt sample)
     int minDepth = 0;          // bdpt's connections: paths of fewer bounces are left out (the chains' own, above)
+    Sampler sampler = Sampler::Sobol;  // every pixel sample's numbers (section 1)
+    bool noScramble = false;   // --no-scramble: the deliberate mistake, one point set for every pixel and pair
     // Called after each pass with that pass's image and the non-finite samples dropped so far.
     std::function<void(int pass, const std::vector<Vec3>& passImage, long long nonFinite)> onPass;
 };
+
+// The numbers of sample `index` of stream `stream` (a pixel, a light path, a VPL path; `salt`
+// tells the kinds apart): PCG32 for --sampler random, else its low-discrepancy points, each
+// stream's scrambled apart from the seed, so that seeds and pixels give independent estimates.
+inline Rng sampleRng(const RenderOptions& opt, uint64_t salt, uint64_t stream, uint64_t index) {
+    Rng rng = makeRng(opt.seed ^ salt, stream, index);
+    if (opt.sampler == Sampler::Random) return rng;
+    rng.lowDiscrepancy = true;
+    sobolPoint(uint32_t(index), rng.sobolDigits);
+    rng.scrambled = !opt.noScramble;
+    rng.scrambleKey = mix64(mix64(opt.seed ^ salt) + stream);
+    return rng;
+}
 
 struct Splat {                 // a light-path contribution that lands on some pixel
     int pixel;
@@ -1478,7 +1617,7 @@ inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, 
     std::vector<Vpl> vpls;
     std::vector<PathVertex> path;
     for (int i = 0; i < opt.vplPaths; ++i) {
-        Rng rng = makeRng(opt.seed ^ 0x5bd1e995ULL, uint64_t(i), uint64_t(pass));
+        Rng rng = sampleRng(opt, 0x5bd1e995ULL, uint64_t(i), uint64_t(pass));
         lightSubpath(scene, opt, rng, path);
         for (size_t k = 0; k < path.size(); ++k) {
             if (!connectable(scene, path[k])) continue;
@@ -1726,7 +1865,7 @@ inline int strategyImageCount(const RenderOptions& opt) {  // vcm: one merge ima
 // camera stream, so that vcm, which traces all light subpaths of a pass first, makes the same
 // ones as bdpt (--radius 0 gives bdpt's image bit for bit).
 inline Rng lightPathRng(const RenderOptions& opt, int pixel, int pass) {
-    return makeRng(opt.seed ^ 0x3c6ef372fe94f82bULL, uint64_t(pixel), uint64_t(pass));
+    return sampleRng(opt, 0x3c6ef372fe94f82bULL, uint64_t(pixel), uint64_t(pass));
 }
 
 // Every connection (s,t) of one camera subpath with one light subpath, MIS-weighted: bdpt's
@@ -2742,6 +2881,9 @@ inline int bootstrapSamples(const RenderOptions& opt) {
     return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::PSSMLT ? 100000 : 1000000;
 }
 
+// Independent numbers, whatever --sampler: mmlt deals its bootstrap samples out to the path
+// lengths by index, and every L-th point of a Sobol sequence is no longer evenly spread (every
+// second point of the radical inverse lies in [0, 1/2)); its b_k came out 2.4% low in the furnace.
 inline Rng bootstrapRng(const RenderOptions& opt, int sample, int stream) {
     return makeRng(opt.seed ^ 0x2545f4914f6cdd1dULL, uint64_t(sample), uint64_t(stream));
 }
@@ -3218,7 +3360,7 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
             row.nonFinite = 0;
             row.energyUnclamped = row.energyClamped = 0;
             for (int x = 0; x < W; ++x) {
-                Rng rng = makeRng(opt.seed, uint64_t(y) * W + x, uint64_t(p));
+                Rng rng = sampleRng(opt, 0, uint64_t(y) * W + x, uint64_t(p));
                 Vec3 v = sample(scene, opt, data, x, y, rng, row);
                 if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
                 pass[size_t(y) * W + x] = v;
@@ -3831,6 +3973,7 @@ inline Scene loadScene(const std::string& path) {
 constexpr const char* kMethodNames[] = {"pt", "nee", "lt", "ir", "bdpt", "vcm", "pssmlt", "mmlt", "mlt"};  // in Method's order
 constexpr const char* kHeuristicNames[] = {"balance", "power", "max", "uniform"};                   // in Heuristic's order
 constexpr const char* kRouletteNames[] = {"throughput", "albedo", "off"};                           // in Roulette's order
+constexpr const char* kSamplerNames[] = {"sobol", "random"};                                         // in Sampler's order
 inline const char* methodName(Method m) { return kMethodNames[int(m)]; }
 
 struct CommandLine {
@@ -4022,11 +4165,22 @@ inline const std::vector<OptionSpec> kOptions = {
      "sample that carries light) instead of one chosen in proportion to its\n"
      "brightness: start-up bias, visible at short runs",
      [](CL& cl, A&) { cl.opt.fixedStart = true; }},
+    {"--no-scramble", "", {}, "",
+     "--sampler sobol without its random scrambles and shuffles: every pixel\n"
+     "draws the same points and every pair of dimensions the same pattern, so\n"
+     "the film position, the first bounce and the lamp point move together\n"
+     "(a biased, patterned image)",
+     [](CL& cl, A&) { cl.opt.noScramble = true; }},
     {nullptr, "", {}, "", "Sampling", nullptr},
     {"--spp", "N", {}, "", "N passes of one sample per pixel (default 16)", [](CL& cl, A& a) { cl.opt.spp = int(a.integer(1, 1e8)); }},
     {"--time", "SECONDS", {}, "", "render passes until SECONDS have passed (replaces --spp)",
      [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7); }},
-    {"--seed", "S", {}, "", "seed of every pixel's random stream (default 1)", [](CL& cl, A& a) { cl.opt.seed = uint64_t(a.integer(0, 9e15)); }},
+    {"--sampler", "S", {}, "",
+     "where each pixel sample's numbers come from: sobol (default), stratified\n"
+     "2D points (padded, Owen-scrambled Sobol) for its first 32 dimensions, or\n"
+     "random (independent PCG32 numbers throughout)",
+     [](CL& cl, A& a) { cl.opt.sampler = a.choice<Sampler>("sampler", kSamplerNames); }},
+    {"--seed", "S", {}, "", "seed of every pixel's random stream and scrambles (default 1)", [](CL& cl, A& a) { cl.opt.seed = uint64_t(a.integer(0, 9e15)); }},
     {"--threads", "N", {}, "", "worker threads (default: all cores); the image does not depend on N",
      [](CL& cl, A& a) { cl.opt.threads = int(a.integer(1, 1024)); }},
     {nullptr, "", {}, "", "Output", nullptr},
@@ -4177,6 +4331,8 @@ inline std::string optionsLabel(const RenderOptions& o) {  // what distinguishes
     if (o.method == Method::BDPT || o.method == Method::VCM) s << "--heuristic " << kHeuristicNames[int(o.heuristic)] << " ";
     if (o.method == Method::VCM) s << "--alpha " << o.alpha << " ";
     if (isMetropolis(o.method) && o.fixedStart) s << "--fixed-start ";
+    if (o.sampler != Sampler::Sobol) s << "--sampler " << kSamplerNames[int(o.sampler)] << " ";
+    if (o.noScramble) s << "--no-scramble ";
     if (o.maxDepth != 32) s << "--maxdepth " << o.maxDepth;
     std::string r = s.str();
     while (!r.empty() && r.back() == ' ') r.pop_back();

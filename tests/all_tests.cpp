@@ -38,6 +38,9 @@ namespace test_robustness {
 namespace test_sampling {
 #include "test_sampling.cpp"
 }
+namespace test_sampler {
+#include "test_sampler.cpp"
+}
 namespace test_transport {
 #include "test_transport.cpp"
 }

@@ -11,8 +11,8 @@
 // and the share of the squared error in the pixels that see a mirror or glass (seesSpecular).
 //   build/efficiency [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT] [--metropolis]
 // --alternatives adds the Russian roulette variants (the measurements behind the choice in
-// bdpt's banner); --only keeps the methods whose label contains TEXT (and nee --mis,
-// the baseline).
+// bdpt's banner); --only keeps the methods whose label contains TEXT, or any of a comma-separated
+// list (and nee --mis, the baseline): --only "pt,nee,bdpt" gives both samplers of those.
 #include "bench.h"
 
 struct Variant {
@@ -32,11 +32,15 @@ static RenderOptions with(Method m, void (*change)(RenderOptions&) = nullptr) {
 static std::vector<Variant> variants(bool alternatives) {
     std::vector<Variant> v = {
         {"pt", with(Method::PT)},
+        {"pt --sampler random", with(Method::PT, [](RenderOptions& o) { o.sampler = Sampler::Random; })},
         {"nee", with(Method::NEE)},
+        {"nee --sampler random", with(Method::NEE, [](RenderOptions& o) { o.sampler = Sampler::Random; })},
         {"nee --mis", with(Method::NEE, [](RenderOptions& o) { o.mis = true; })},
+        {"nee --mis --sampler random", with(Method::NEE, [](RenderOptions& o) { o.mis = true, o.sampler = Sampler::Random; })},
         {"lt", with(Method::LT)},
         {"ir", with(Method::IR)},
         {"bdpt", with(Method::BDPT)},
+        {"bdpt --sampler random", with(Method::BDPT, [](RenderOptions& o) { o.sampler = Sampler::Random; })},
         {"bdpt --heuristic power", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Power; })},
         {"bdpt --heuristic max", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Max; })},
         {"bdpt --heuristic uniform", with(Method::BDPT, [](RenderOptions& o) { o.heuristic = Heuristic::Uniform; })},
@@ -108,6 +112,13 @@ static Image downsampled(const Image& ref, int width, int height) {
     return out;
 }
 
+static bool selected(const std::string& label, const std::string& only) {
+    std::stringstream list(only);
+    for (std::string item; std::getline(list, item, ',');)
+        if (label.find(item) != std::string::npos) return true;
+    return only.empty();
+}
+
 static int metropolis(int seeds, const std::vector<std::string>& scenes, const std::string& only) {
     std::vector<Variant> runs = {
         {"bdpt", with(Method::BDPT)},
@@ -118,7 +129,7 @@ static int metropolis(int seeds, const std::vector<std::string>& scenes, const s
         {"mmlt --chain-short-paths", with(Method::MMLT, [](RenderOptions& o) { o.chainShortPaths = true; })},
     };
     if (!only.empty())  // bdpt, the yardstick, and the variants whose label contains `only`
-        runs.erase(std::remove_if(runs.begin() + 1, runs.end(), [&](const Variant& v) { return v.label.find(only) == std::string::npos; }),
+        runs.erase(std::remove_if(runs.begin() + 1, runs.end(), [&](const Variant& v) { return !selected(v.label, only); }),
                    runs.end());
     struct Size { int width, spp; };
     std::printf("Equal samples (mutations) per pixel, %d seeds, one thread; medians of MSE and CPU seconds over the seeds; "
@@ -187,7 +198,7 @@ int main(int argc, char** argv) {
     if (metropolisRows) return metropolis(seeds, scenes, only);
     std::vector<Variant> runs;
     for (const Variant& v : variants(alternatives))
-        if (only.empty() || v.label.find(only) != std::string::npos || v.label == "nee --mis") runs.push_back(v);
+        if (selected(v.label, only) || v.label == "nee --mis") runs.push_back(v);
     std::printf("Equal samples (%d per pixel), %d seeds, one thread; medians over the seeds.\n\n", spp, seeds);
     std::printf("| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |\n"
                 "|---|---|---|---|---|---|---|\n");

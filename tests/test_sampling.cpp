@@ -70,12 +70,17 @@ constexpr int kThetaBins = 20, kPhiBins = 40, kSamples = 400000;
 // cell is N times the integral of `pdf` (solid angle) over it, by the midpoint rule on sub x sub
 // points with the element sin(theta) dtheta dphi (a density with an edge inside cells, like the
 // camera's, needs a finer rule). The cells' complement (no direction) is one more cell.
+// Sampler::Sobol: sample i draws point i of one scrambled Sobol sequence, as pass i of a pixel.
 template <class Sample, class Pdf>
-static ChiSquare chiSquareDirections(const Frame& frame, Sample sample, Pdf pdf, uint64_t seed, float thetaMax = kPi, int sub = 8) {
+static ChiSquare chiSquareDirections(const Frame& frame, Sample sample, Pdf pdf, uint64_t seed, float thetaMax = kPi, int sub = 8,
+                                     Sampler sampler = Sampler::Random) {
     Rng rng = makeRng(seed, 1, 2);
+    RenderOptions sobol;
+    sobol.seed = seed;
     const int cells = kThetaBins * kPhiBins;
     std::vector<double> observed(cells + 1, 0), expected(cells + 1, 0);
     for (int i = 0; i < kSamples; ++i) {
+        if (sampler == Sampler::Sobol) rng = sampleRng(sobol, 0, 0, uint64_t(i));
         Vec3 w;
         if (!sample(rng, w)) { observed[cells] += 1; continue; }
         Vec3 local(dot(w, frame.s), dot(w, frame.t), dot(w, frame.n));
@@ -115,7 +120,7 @@ struct BsdfCheck {
     double worstPdf = 0, worstWeight = 0;
 };
 
-static BsdfCheck checkBsdf(const Material& m, Vec3 wo, uint64_t seed, bool wrongPdf = false) {
+static BsdfCheck checkBsdf(const Material& m, Vec3 wo, uint64_t seed, bool wrongPdf = false, Sampler sampler = Sampler::Random) {
     Scene scene = singleQuadScene(m);
     SurfacePoint sp = surfaceAtOrigin();
     BsdfCheck c;
@@ -130,7 +135,7 @@ static BsdfCheck checkBsdf(const Material& m, Vec3 wo, uint64_t seed, bool wrong
         return true;
     };
     auto pdf = [&](Vec3 w) { return wrongPdf ? (w.z > 0 ? 1 / (2 * kPi) : 0.0f) : pdfBsdf(scene, sp, wo, w); };
-    c.fit = chiSquareDirections(Frame(Vec3(0, 0, 1)), sample, pdf, seed);
+    c.fit = chiSquareDirections(Frame(Vec3(0, 0, 1)), sample, pdf, seed, kPi, 8, sampler);
     return c;
 }
 
@@ -151,6 +156,22 @@ TEST_CASE("chi-square: diffuse and glossy BSDF sampling fit their densities at s
             CHECK(glossy.worstWeight < 1e-3);
         }
     }
+}
+
+// With quasi-random numbers the counts are closer to their expectations than chance allows (chi^2
+// far below its degrees of freedom), which the test passes; a wrong density is still far off.
+TEST_CASE("chi-square with --sampler sobol: BSDF sampling fits, more evenly than chance; a wrong density still fails") {
+    for (float angle : {0.0f, 60.0f}) {
+        CAPTURE(angle);
+        BsdfCheck diffuse = checkBsdf(makeMaterial(Material::Diffuse, 0.8f), incoming(angle), 7, false, Sampler::Sobol);
+        BsdfCheck glossy = checkBsdf(makeMaterial(Material::Glossy, 0.8f, 50), incoming(angle), 8, false, Sampler::Sobol);
+        CHECK(diffuse.fit.pValue > kAlpha);
+        CHECK(glossy.fit.pValue > kAlpha);
+        CHECK(diffuse.fit.chi2 < 0.5 * diffuse.fit.cells);  // independent numbers give about `cells`
+        CHECK(glossy.fit.chi2 < 0.5 * glossy.fit.cells);
+    }
+    BsdfCheck uniform = checkBsdf(makeMaterial(Material::Diffuse, 0.8f), incoming(30), 9, true, Sampler::Sobol);
+    CHECK(uniform.fit.pValue < 1e-6);
 }
 
 TEST_CASE("chi-square: a deliberately wrong density fails (cosine sampling evaluated as uniform; Phong's n+2 for n+1)") {

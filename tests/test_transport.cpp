@@ -245,7 +245,7 @@ TEST_CASE("ir --clamp removes exactly the energy above min(G, C), G with both co
     double before = 0, after = 0;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
-            Rng rng = makeRng(o.seed, uint64_t(y) * W + x, 0);
+            Rng rng = sampleRng(o, 0, uint64_t(y) * W + x, 0);  // the render's own numbers for this pixel
             Ray ray = pixelRay(scene.camera, x, y, rng);
             Hit hit = intersect(scene, ray);
             if (!hit.found()) continue;
