@@ -99,7 +99,7 @@ help:
 	@echo "make test       every test file, one line each (about 3 minutes on 2 cores); make test-sanitize (about 11)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
 	@echo "make uneven     bdpt, mlt, pssmlt and mmlt per region on the door: build/uneven-door.png (about 1 minute)"
-	@echo "make charts     error against time, every method and scene, 1.5 s a run: build/charts/ (about 5 minutes)"
+	@echo "make charts     error against time, every method and scene, and both samplers, 1.5 s a run: build/charts/ (about 5 minutes)"
 	@echo "make efficiency 1/(MSE x CPU-s) of every method, 64 samples, 2 seeds: build/efficiency.md (about 2 minutes)"
 	@echo "make metropolis mlt, pssmlt and mmlt against bdpt, 8 seeds, two sizes: build/metropolis.md (about 45 minutes)"
 	@echo "make bench      our BVH against Embree, cost per sample: printed only (about 3 minutes)"

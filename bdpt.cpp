@@ -97,17 +97,20 @@ struct Rng {
         return (shifted >> rot) | (shifted << ((-rot) & 31));
     }
     // Low-discrepancy mode (sampleRng sets it): the next number is coordinate `dimension` of this
-    // sample's Sobol point (section 1, below), scrambled by the stream's own `scrambleKey`.
+    // sample's scrambled Sobol point (section 1, below), its first 24 binary digits.
     bool lowDiscrepancy = false, scrambled = true;
     uint32_t dimension = 0;
     uint64_t scrambleKey = 0;
-    uint32_t sobolDigits[kLowDiscrepancyDimensions] = {};  // the point, unscrambled, in digit order
-    inline float lowDiscrepancyUniform();
+    uint32_t point[kLowDiscrepancyDimensions] = {};
+    inline void scrambleCoordinates(uint32_t first);
     // [0,1), 24 exact bits. Inlined always: it is called for every number every method draws, and
     // the replay branch makes it look too large to GCC's inliner.
     [[gnu::always_inline]] float uniform() {
         if (replay) return replayUniform(*replay);
-        if (lowDiscrepancy) return lowDiscrepancyUniform();
+        if (lowDiscrepancy && dimension < kLowDiscrepancyDimensions) {
+            if (dimension % 4 == 0 && dimension + 4 < kLowDiscrepancyDimensions) scrambleCoordinates(dimension + 4);
+            return float(point[dimension++]) * 0x1p-24f;
+        }
         return float(nextUint() >> 8) * 0x1p-24f;
     }
 };
@@ -130,9 +133,9 @@ inline Rng makeRng(uint64_t seed, uint64_t a, uint64_t b) {
 // miss no region of a smooth integrand, and the error falls faster: with Owen's scramble (below)
 // as N^-3/2 for smooth 2D integrands, about N^-1 across an edge such as a shadow's.
 // A path's numbers are one point in many dimensions (film position, then per vertex the lamp
-// choice, the lamp point, the BSDF's direction, roulette), all of which can be stratified jointly:
-// the Sobol sequence, dimension d the digital construction x_d(i) = C_d i (i's bits times a
-// binary matrix, read as a binary fraction), is such that its first 2^m points, and every
+// choice if there are several, the lamp point, the BSDF's direction, roulette), all of which can
+// be stratified jointly: the Sobol sequence, dimension d the digital construction x_d(i) = C_d i
+// (i's bits times a binary matrix, read as a binary fraction), is such that its first 2^m points, and every
 // aligned block of 2^m after them, fill the elementary intervals of every low-dimensional
 // projection nearly evenly. Dimension 0 is the radical inverse (C_0 = identity); the others'
 // matrices come from a primitive polynomial and initial direction numbers m_k, for which we take
@@ -172,11 +175,11 @@ constexpr SobolPolynomial kJoeKuo[kLowDiscrepancyDimensions - 1] = {
 // scrambleDigits below sees "earlier digits" as lower bits). Column k is m_k / 2^k, and past the
 // initial ones Sobol's recurrence m_k = 2 a_1 m_(k-1) ^ 4 a_2 m_(k-2) ^ ... ^ 2^s m_(k-s) ^ m_(k-s).
 struct SobolMatrices {
-    uint32_t column[kLowDiscrepancyDimensions][32];
+    uint32_t column[32][kLowDiscrepancyDimensions];  // [k][d]: column k of every C_d side by side
 };
 constexpr SobolMatrices makeSobolMatrices() {
     SobolMatrices C{};
-    for (uint32_t k = 0; k < 32; ++k) C.column[0][k] = 1u << k;
+    for (uint32_t k = 0; k < 32; ++k) C.column[k][0] = 1u << k;
     for (uint32_t d = 1; d < kLowDiscrepancyDimensions; ++d) {
         const SobolPolynomial& p = kJoeKuo[d - 1];
         uint32_t m[32] = {};
@@ -188,7 +191,7 @@ constexpr SobolMatrices makeSobolMatrices() {
                 for (uint32_t j = 1; j < p.degree; ++j)
                     if ((p.a >> (p.degree - 1 - j)) & 1) m[k] ^= m[k - j] << j;
             }
-            C.column[d][k] = reverseBits(m[k] << (31 - k));
+            C.column[k][d] = reverseBits(m[k] << (31 - k));
         }
     }
     return C;
@@ -206,30 +209,77 @@ inline uint32_t scrambleDigits(uint32_t digits, uint32_t seed) {
     digits ^= digits * 0x8D22F6E6u;
     return digits;
 }
-// Sobol point `index` in digit order: the xor of the columns of C_d picked by index's bits. Every
-// pixel of a pass draws the same point (scrambled its own way), so each thread keeps the last.
-inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
-    thread_local uint32_t cachedIndex = ~0u, cached[kLowDiscrepancyDimensions];
-    if (index != cachedIndex) {
-        for (uint32_t d = 0; d < kLowDiscrepancyDimensions; ++d) {
-            cached[d] = 0;
-            for (uint32_t i = index, k = 0; i; i >>= 1, ++k)
-                if (i & 1) cached[d] ^= kSobol.column[d][k];
-        }
-        cachedIndex = index;
+// The scramble's seed of dimension d: the (d+1)-th step of an LCG started at the stream's key,
+// reached in one multiply-add by composing the steps (x -> a x + c, d+1 times) at compile time.
+struct LcgJump {
+    uint64_t mul, add;
+};
+struct LcgJumps {
+    LcgJump step[kLowDiscrepancyDimensions];
+};
+constexpr LcgJumps makeLcgJumps() {
+    LcgJumps J{};
+    uint64_t mul = 1, add = 0;
+    for (uint32_t d = 0; d < kLowDiscrepancyDimensions; ++d) {
+        mul *= 6364136223846793005ULL;
+        add = add * 6364136223846793005ULL + 1442695040888963407ULL;
+        J.step[d] = {mul, add};
     }
+    return J;
+}
+constexpr LcgJumps kScrambleSeeds = makeLcgJumps();
+
+// Digit order back to a fraction's 24 leading digits: the bits' order reversed a byte at a time.
+struct ByteReversal {
+    uint8_t reversed[256];
+};
+constexpr ByteReversal makeByteReversal() {
+    ByteReversal R{};
+    for (uint32_t i = 0; i < 256; ++i) R.reversed[i] = uint8_t(reverseBits(i) >> 24);
+    return R;
+}
+constexpr ByteReversal kByteReversal = makeByteReversal();
+inline uint32_t fractionDigits(uint32_t digits) {
+    const uint8_t* r = kByteReversal.reversed;
+    return uint32_t(r[digits & 255]) << 16 | uint32_t(r[(digits >> 8) & 255]) << 8 | r[(digits >> 16) & 255];
+}
+
+// Sample `index`'s point in digit order, unscrambled: the xor of the columns of C_d picked by
+// index's bits.
+inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
+    std::fill(digits, digits + kLowDiscrepancyDimensions, 0u);
+    for (uint32_t i = index; i; i &= i - 1) {  // bit k of index set: column k of every dimension
+        const uint32_t* column = kSobol.column[__builtin_ctz(i)];
+        for (uint32_t d = 0; d < kLowDiscrepancyDimensions; ++d) digits[d] ^= column[d];
+    }
+}
+// Every pixel's camera stream draws point `pass` in pass `pass`: each thread keeps the last.
+inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
+    thread_local uint32_t cachedIndex = ~0u, cached[kLowDiscrepancyDimensions];
+    if (index != cachedIndex) sobolPoint(index, cached), cachedIndex = index;
     std::copy(cached, cached + kLowDiscrepancyDimensions, digits);
 }
-// The next coordinate, as a fraction in [0,1). Not scrambled: the deliberate mistake --no-scramble,
-// the same points in every pixel.
-inline float Rng::lowDiscrepancyUniform() {
-    if (dimension >= kLowDiscrepancyDimensions) return float(nextUint() >> 8) * 0x1p-24f;
-    uint32_t digits = sobolDigits[dimension++];
-    if (scrambled) {  // each dimension's seed: the next step of an LCG started at the stream's key
-        scrambleKey = scrambleKey * 6364136223846793005ULL + 1442695040888963407ULL;
-        digits = scrambleDigits(digits, uint32_t(scrambleKey >> 32));
+// A stream's own order of the sequence (Burley 2020): index's bits scrambled like a coordinate's
+// digits, but from the top, each flipped by a hash of the bits above it. The first 2^m indices
+// then map onto one aligned block of 2^m, itself a net, in a random order. Two streams whose
+// numbers meet in one path (bdpt's camera and light subpaths, a pixel and ir's VPLs) must not
+// draw the same point i: scrambled apart, x_d(i) and y_d(i) still share i's digits, and pairs
+// of them cluster along a scrambled diagonal (bdpt's MSE fell as N^-0.7 instead of N^-1).
+// Within blocks of 2^16 passes: fewer bits set, fewer columns to add up in sobolPoint.
+inline uint32_t shuffledIndex(uint32_t index, uint32_t seed) {
+    uint32_t low = reverseBits(scrambleDigits(reverseBits(index & 0xFFFFu), seed)) & 0xFFFFu;
+    return (index & ~0xFFFFu) | low;
+}
+// Coordinates first..first+3, scrambled by their own seeds (or not: the deliberate mistake
+// --no-scramble, the same points in every pixel) and turned into binary fractions. uniform()
+// asks for the next four as it starts a block of four: four independent hashes, done while the
+// caller uses the numbers it has, cost a third less time than one hash per number it waits for.
+inline void Rng::scrambleCoordinates(uint32_t first) {
+    for (uint32_t d = first; d < first + 4; ++d) {
+        const LcgJump& jump = kScrambleSeeds.step[d];
+        uint32_t seed = uint32_t((jump.mul * scrambleKey + jump.add) >> 32);
+        point[d] = fractionDigits(scrambled ? scrambleDigits(point[d], seed) : point[d]);
     }
-    return float(reverseBits(digits) >> 8) * 0x1p-24f;
 }
 
 // Orthonormal frame around a unit normal (Duff et al. 2017), to express BSDFs locally.
@@ -1128,7 +1178,7 @@ inline bool isMetropolis(Method m) { return m == Method::PSSMLT || m == Method::
 // Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
 // the depth limit. bdpt's banner says which it uses and why.
 enum class Roulette { Throughput, Albedo, Off };
-enum class Sampler { Sobol, Random };  // section 1: padded, Owen-scrambled Sobol points, or PCG32 alone
+enum class Sampler { Sobol, Random };  // section 1: Owen-scrambled Sobol points, or PCG32 alone
 enum class Heuristic { Balance, Power, Max, Uniform };  // bdpt's MIS heuristics (its banner)
 
 struct RenderOptions {
@@ -1164,15 +1214,18 @@ struct RenderOptions {
 };
 
 // The numbers of sample `index` of stream `stream` (a pixel, a light path, a VPL path; `salt`
-// tells the kinds apart): PCG32 for --sampler random, else its low-discrepancy points, each
-// stream's scrambled apart from the seed, so that seeds and pixels give independent estimates.
+// tells the kinds apart, 0 the camera's): PCG32 for --sampler random, else its low-discrepancy
+// points, each stream's scrambled apart from the seed, so that seeds and pixels give independent
+// estimates; every stream but the camera's draws them in its own order (shuffledIndex).
 inline Rng sampleRng(const RenderOptions& opt, uint64_t salt, uint64_t stream, uint64_t index) {
     Rng rng = makeRng(opt.seed ^ salt, stream, index);
     if (opt.sampler == Sampler::Random) return rng;
     rng.lowDiscrepancy = true;
-    sobolPoint(uint32_t(index), rng.sobolDigits);
     rng.scrambled = !opt.noScramble;
     rng.scrambleKey = mix64(mix64(opt.seed ^ salt) + stream);
+    if (salt == 0) cachedSobolPoint(uint32_t(index), rng.point);
+    else sobolPoint(rng.scrambled ? shuffledIndex(uint32_t(index), uint32_t(rng.scrambleKey)) : uint32_t(index), rng.point);
+    rng.scrambleCoordinates(0);
     return rng;
 }
 
@@ -4166,19 +4219,18 @@ inline const std::vector<OptionSpec> kOptions = {
      "brightness: start-up bias, visible at short runs",
      [](CL& cl, A&) { cl.opt.fixedStart = true; }},
     {"--no-scramble", "", {}, "",
-     "--sampler sobol without its random scrambles and shuffles: every pixel\n"
-     "draws the same points and every pair of dimensions the same pattern, so\n"
-     "the film position, the first bounce and the lamp point move together\n"
-     "(a biased, patterned image)",
+     "--sampler sobol without its random scrambles: every pixel draws the same\n"
+     "point in each pass, so neighbouring pixels' film positions, bounces and\n"
+     "lamp points move together (a biased, patterned image)",
      [](CL& cl, A&) { cl.opt.noScramble = true; }},
     {nullptr, "", {}, "", "Sampling", nullptr},
     {"--spp", "N", {}, "", "N passes of one sample per pixel (default 16)", [](CL& cl, A& a) { cl.opt.spp = int(a.integer(1, 1e8)); }},
     {"--time", "SECONDS", {}, "", "render passes until SECONDS have passed (replaces --spp)",
      [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7); }},
     {"--sampler", "S", {}, "",
-     "where each pixel sample's numbers come from: sobol (default), stratified\n"
-     "2D points (padded, Owen-scrambled Sobol) for its first 32 dimensions, or\n"
-     "random (independent PCG32 numbers throughout)",
+     "where each pixel sample's numbers come from: sobol (default), the points\n"
+     "of an Owen-scrambled Sobol sequence in its first 32 dimensions (PCG32\n"
+     "past them), or random (independent PCG32 numbers throughout)",
      [](CL& cl, A& a) { cl.opt.sampler = a.choice<Sampler>("sampler", kSamplerNames); }},
     {"--seed", "S", {}, "", "seed of every pixel's random stream and scrambles (default 1)", [](CL& cl, A& a) { cl.opt.seed = uint64_t(a.integer(0, 9e15)); }},
     {"--threads", "N", {}, "", "worker threads (default: all cores); the image does not depend on N",

@@ -14,6 +14,8 @@
 #   tests/charts.sh plots     the charts again from the logs of the last charts run (no rendering)
 #   tests/charts.sh tables    the failure table and the reference check from the runs' logs
 #   tests/charts.sh refcheck  the references' noise against the charted errors (also run by charts)
+#   tests/charts.sh samplers  --sampler sobol against random: pt, nee --mis, bdpt on cornell and
+#                             on its direct light alone (also run by charts)
 # Where results go: into build/charts/ (a student's run never changes a committed file), unless
 # NOTES=1 (make figures), which writes the committed figures and tables of lecture_notes/ and
 # splices the tables into the pages. Budgets: quick by default (charts 1.5 s a run, efficiency
@@ -36,7 +38,7 @@ mkdir -p "$FIG" "$LOGS/refs" scenes/refs
 
 # gnuplot draws every chart and figure: missing, say so before any work (Debian: gnuplot-nox).
 case "${1:-charts}" in
-  charts|panels|figures|plots|notes|estimators|furnaceseries|sds|thingap)
+  charts|panels|figures|plots|notes|estimators|furnaceseries|sds|thingap|samplers)
     command -v gnuplot >/dev/null || { echo "tests/charts.sh ${1:-charts}: needs gnuplot, which is not installed (apt-get install gnuplot-nox); nothing done" >&2; exit 1; } ;;
 esac
 
@@ -164,6 +166,66 @@ charts() {
     plotScene "$s"
   done
   SCENES=$ALL_SCENES tables
+  samplers
+}
+
+# The two samplers side by side (notes, page 9): pt, nee --mis and bdpt with --sampler sobol
+# (solid) and random (dashed) on cornell, and on its direct light alone (--maxdepth 1), where
+# stratification helps most; each curve's fitted slope d log RMSE / d log t in its key.
+samplerMethods() {
+  printf '%s\n' "pt|--method pt" "nee-mis|--method nee --mis" "bdpt-balance|--method bdpt"
+}
+samplers() {
+  local ref=$LOGS/refs/cornell-direct.pfm
+  if [ ! -f "$ref" ]; then  # direct light's reference: nee --mis, 2 seeds no chart run uses
+    for seed in 101 102; do
+      ./bdpt scenes/cornell.scene --method nee --mis --maxdepth 1 --res "$RES" --time 30 --seed $seed --quiet \
+        --out "$LOGS/refs/cornell-direct-$seed.png"
+    done
+    ./bdpt --average "$LOGS/refs/cornell-direct-101.pfm" "$LOGS/refs/cornell-direct-102.pfm" --out "$LOGS/refs/cornell-direct.png" --overwrite
+  fi
+  for variant in cornell cornell-direct; do
+    local depth="" reference=scenes/refs/cornell.pfm
+    [ "$variant" = cornell-direct ] && depth="--maxdepth 1" reference=$ref
+    while IFS='|' read -r label opts; do
+      for sampler in sobol random; do
+        log=$LOGS/samplers-$variant-$label-$sampler.csv
+        # shellcheck disable=SC2086
+        ./bdpt scenes/cornell.scene $opts $depth --sampler $sampler --res "$RES" --time "$RUN_SECONDS" --quiet \
+          --ref "$reference" --log "$log" --out "${log%.csv}.png"
+      done
+    done < <(samplerMethods)
+    samplerPlot $variant
+  done
+}
+samplerPlot() {
+  local variant=$1 plot="" what="cornell, all light"
+  [ "$variant" = cornell-direct ] && what="cornell, direct light only (--maxdepth 1)"
+  while IFS='|' read -r label opts; do
+    for sampler in sobol random; do
+      log=$LOGS/samplers-$variant-$label-$sampler.csv
+      # least squares of log RMSE (without the lamp) on log seconds, from the 8th pass on
+      slope=$(awk -F, 'NR > 1 && $5 >= 8 && $13 > 0 { x = log($6); y = log($13); n++; sx += x; sy += y; sxx += x * x; sxy += x * y }
+        END { if (n > 2) printf "%.2f", (n * sxy - sx * sy) / (n * sxx - sx * sx); else printf "?" }' "$log")
+      colour=$(lineStyle "$label" | sed "s/ dt .*//")
+      dash=1; [ $sampler = random ] && dash=2
+      plot="$plot${plot:+, }'$log' using 6:13 with lines lw 2 $colour dt $dash title '${label%-balance} $sampler (slope $slope)'"
+    done
+  done < <(samplerMethods)
+  gnuplot <<GP
+set terminal pngcairo size 800,560 font "sans,11"
+set output "$FIG/error-vs-time-samplers-$variant.png"
+set datafile separator ","
+set logscale xy
+set key top right inside box opaque
+set grid
+set title "$what, $RES, $RUN_SECONDS s a run\n--sampler sobol (solid) and random (dashed)"
+set xlabel "seconds (2 threads)"
+set ylabel "RMSE without the lamp's pixels"
+set format y "%g"
+plot $plot
+GP
+  echo "chart $FIG/error-vs-time-samplers-$variant.png"
 }
 
 # make efficiency (tests/efficiency.cpp): its table in build/efficiency.md; with NOTES=1 also
@@ -199,6 +261,7 @@ metropolisTable() {
 
 plots() {  # the charts again from the runs' logs, without rendering (after a change of style)
   for s in $SCENES; do plotScene "$s"; done
+  for variant in cornell cornell-direct; do samplerPlot $variant; done
 }
 
 plotScene() {

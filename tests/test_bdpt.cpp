@@ -926,12 +926,13 @@ TEST_CASE("bdpt equals nee --mis region by region where both have the technique:
 
 // The caustic under glass-box's glass ball, seen directly (L S S D E): only s = 0 and t = 1 make
 // it, and with the true densities t = 1 (light tracing) takes nearly all of it, so bdpt's error
-// there is no worse than lt's alone at equal samples. With pbrt's densities through specular
-// vertices (--delta-density-one: the delta as an area density of 1) s = 0 keeps most of that
-// light, and bdpt's error in the block was 80x lt's (0.23 and 23 against lt's 0.28, here). Both
-// are unbiased: the squared error of a pixel is the variance of its mean, here over the spread
-// of independent seeds.
-TEST_CASE("a caustic seen directly: bdpt's error there is no worse than light tracing's at equal samples") {
+// there is lt's alone at equal samples. With pbrt's densities through specular vertices
+// (--delta-density-one: the delta as an area density of 1) s = 0 keeps most of that light, and
+// bdpt's error in the block is about 100x lt's. Both are unbiased: the squared error of a pixel
+// is the variance of its mean, here over the spread of independent seeds. Six seeds estimate a
+// variance this spiky to about +-30% (bdpt/lt over four sets of seeds and both samplers:
+// 0.93-1.35), so "equal" is checked as below 1.6x, which the mistake exceeds 60-fold.
+TEST_CASE("a caustic seen directly: bdpt's error there is light tracing's at equal samples") {
     Scene scene = sceneAt("scenes/glass-box.scene", 128, 128);
     const int seeds = 6;
     // The pixels of the caustic's block (x 80-99, y 114-116) that see the floor alone: at its
@@ -970,7 +971,7 @@ TEST_CASE("a caustic seen directly: bdpt's error there is no worse than light tr
     MESSAGE("caustic block (" << block.size() << " pixels): squared error bdpt " << bdpt << ", lt " << lt << ", bdpt --delta-density-one "
             << mistake << " (means " << bdptMean << ", " << ltMean << ", " << mistakeMean << ")");
     CHECK(ltMean > 0.5);  // the block is in the caustic
-    CHECK(bdpt < lt);
+    CHECK(bdpt < 1.6 * lt);
     CHECK(mistake > 10 * lt);
     // Who carries the caustic: the MIS-weighted images of s = 0 and t = 1 for k = 4 (L S S D E).
     for (bool deltaDensityOne : {false, true}) {
