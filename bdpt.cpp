@@ -245,13 +245,19 @@ inline uint32_t fractionDigits(uint32_t digits) {
 }
 
 // Sample `index`'s point in digit order, unscrambled: the xor of the columns of C_d picked by
-// index's bits.
+// index's bits, for four dimensions at a time (GCC's and Clang's vectors: SSE registers on x86).
 inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
-    std::fill(digits, digits + kLowDiscrepancyDimensions, 0u);
+    typedef uint32_t FourDimensions __attribute__((vector_size(16)));
+    FourDimensions point[kLowDiscrepancyDimensions / 4] = {};
     for (uint32_t i = index; i; i &= i - 1) {  // bit k of index set: column k of every dimension
         const uint32_t* column = kSobol.column[__builtin_ctz(i)];
-        for (uint32_t d = 0; d < kLowDiscrepancyDimensions; ++d) digits[d] ^= column[d];
+        for (uint32_t q = 0; q < kLowDiscrepancyDimensions / 4; ++q) {
+            FourDimensions c;
+            std::memcpy(&c, column + 4 * q, sizeof c);
+            point[q] ^= c;
+        }
     }
+    std::memcpy(digits, point, sizeof point);
 }
 // Every pixel's camera stream draws point `pass` in pass `pass`: each thread keeps the last.
 inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
