@@ -270,7 +270,7 @@ inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyD
 // then map onto one aligned block of 2^m, itself a net, in a random order. Two streams whose
 // numbers meet in one path (bdpt's camera and light subpaths, a pixel and ir's VPLs) must not
 // draw the same point i: scrambled apart, x_d(i) and y_d(i) still share i's digits, and pairs
-// of them cluster along a scrambled diagonal (bdpt's MSE fell as N^-0.7 instead of N^-1).
+// of them cluster along a scrambled diagonal (bdpt's MSE would fall as N^-0.7 instead of N^-1).
 // Within blocks of 2^16 passes: fewer bits set, fewer columns to add up in sobolPoint.
 inline uint32_t shuffledIndex(uint32_t index, uint32_t seed) {
     uint32_t low = reverseBits(scrambleDigits(reverseBits(index & 0xFFFFu), seed)) & 0xFFFFu;

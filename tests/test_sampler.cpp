@@ -120,8 +120,8 @@ TEST_CASE("a pixel's camera and light subpaths draw the sequence in different or
 }
 
 // The consequence, end to end: bdpt's variance over seeds falls as 1/N or faster with either
-// sampler (it fell 4.2x from 64 to 512 samples with one order for both subpaths, against
-// random numbers' 8x, and ended 1.5x above them).
+// sampler (with one order for both subpaths it falls 4.2x from 64 to 512 samples, against
+// random numbers' 8x, and ends 1.5x above them).
 TEST_CASE("bdpt with --sampler sobol: the variance over seeds falls at least as 1/N") {
     Scene scene = sceneAt("scenes/cornell.scene", 12, 12);
     auto varianceOverSeeds = [&](Sampler sampler, int spp) {
