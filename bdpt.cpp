@@ -3001,6 +3001,19 @@ inline std::vector<int> chainLengths(const MltPass& mp, int chains) {
     return length;
 }
 
+// A chain's start: entry j of the running sums `cdf` of the bootstrap samples' f, drawn with
+// probability f_j / sum f from u; `pick` is where u fell, u sum f.
+inline int pickInProportion(const std::vector<double>& cdf, float u, double& pick) {
+    pick = double(u) * cdf.back();
+    int j = std::min(int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()), int(cdf.size()) - 1);
+    while (j > 0 && cdf[j] == cdf[j - 1]) --j;  // pick fell on the edge of a zero: the sample before holds it
+    return j;
+}
+// --fixed-start, the deliberate mistake: every chain from the first sample that carries light.
+inline int firstLitSample(const std::vector<double>& f) {
+    return int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
+}
+
 // b from --bootstrap samples, and each chain's start: a bootstrap sample (of its length) drawn in
 // proportion to its f.
 inline void startChains(const Scene& scene, const RenderOptions& opt, int threads, MltPass& mp, RayCount& rays) {
@@ -3024,13 +3037,9 @@ inline void startChains(const Scene& scene, const RenderOptions& opt, int thread
     for (size_t c = 0; c < mp.chains.size(); ++c) {
         MltChain& chain = mp.chains[c];
         chain.rng = makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(c), 0);
-        const std::vector<double>& C = cdf[length[c]];
-        double pick = double(chain.rng.uniform()) * C.back();
-        int j = int(std::upper_bound(C.begin(), C.end(), pick) - C.begin());
-        j = std::min(j, int(C.size()) - 1);
-        while (j > 0 && C[j] == C[j - 1]) --j;  // pick fell on the edge of a zero: the sample before holds it
-        int i = length[c] + j * lengths;
-        if (opt.fixedStart) i = int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
+        double pick;
+        int i = length[c] + pickInProportion(cdf[length[c]], chain.rng.uniform(), pick) * lengths;
+        if (opt.fixedStart) i = firstLitSample(f);
         bootstrapSample(scene, opt, i, chain.current);
     }
 }
@@ -3139,10 +3148,10 @@ inline void startPathChains(const Scene& scene, const RenderOptions& opt, int th
         PathChain& chain = mp.paths[c];
         chain.rng = makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(c), 0);
         for (int attempt = 0; attempt < 16 && !(chain.current.f > 0); ++attempt) {
-            double pick = double(chain.rng.uniform()) * cdf.back();
-            int i = std::min(int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()), n - 1);
-            if (opt.fixedStart) i = int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
-            pathBootstrapSample(scene, opt, i, (pick - (cdf[i] - f[i])), &chain.current);
+            double pick;
+            int i = pickInProportion(cdf, chain.rng.uniform(), pick);
+            if (opt.fixedStart) i = firstLitSample(f);
+            pathBootstrapSample(scene, opt, i, pick - (cdf[i] - f[i]), &chain.current);
         }
     }
 }
