@@ -769,6 +769,8 @@ struct RayBoxTest {
     }
 };
 
+// Closest hit: nearest child first, each hit shortening the ray, so that farther boxes drop out.
+// Any hit (anyHit, shadow rays): the first hit ends it, and its Hit says found() and nothing more.
 template <bool anyHit>
 inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
     Hit hit;
@@ -780,7 +782,7 @@ inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
     stack[top++] = {0, 0};
     while (top > 0) {
         Entry e = stack[--top];
-        if (e.t > r.tmax) continue;  // a closer hit was found since this was pushed
+        if (!anyHit && e.t > r.tmax) continue;  // a closer hit was found since this was pushed
         const BvhNode& n = bvh.nodes[e.node];
         float tEntry[kWidth];
         int base = top;
@@ -791,12 +793,19 @@ inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
                 float t = code & 1 ? intersectSphere(bvh.spheres[k].centre, bvh.spheres[k].radius, r)
                                    : intersectQuad(bvh.quads[k].q, bvh.quads[k].u, bvh.quads[k].v, bvh.quads[k].w, r);
                 if (t < r.tmax) {
+                    if (anyHit) return {t, 0};  // a shadow ray: that something is there is all it asks
                     r.tmax = hit.t = t;
                     hit.shape = code & 1 ? bvh.sphereShape[k] : bvh.quadShape[k];
-                    if (anyHit) return hit;
                 }
                 continue;
             }
+            // Ask for the child's cache lines now, long before it is popped: on a large scene
+            // the wait for a node's first load was most of a ray's time.
+            const char* child = reinterpret_cast<const char*>(&bvh.nodes[n.child[i]]);
+            for (size_t line = 0; line < sizeof(BvhNode); line += 64) __builtin_prefetch(child + line);
+            // Any hit ends a shadow ray's search and none shortens it: the order of the rest
+            // does not matter, and sorting them costs more than it saves.
+            if (anyHit) { stack[top++] = {n.child[i], tEntry[i]}; continue; }
             // Insert so that the nearest child ends on top of the stack (front to back).
             int j = top++;
             while (j > base && stack[j - 1].t < tEntry[i]) { stack[j] = stack[j - 1]; --j; }

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
         Hit h = anyHit ? traverseBvh<true>(bvh, ray) : traverseBvh<false>(bvh, ray);
         BenchHit r;
         r.hit = h.found();
-        if (r.hit) r.t = h.t, r.sphere = isSphere[h.shape];
+        if (r.hit && !anyHit) r.t = h.t, r.sphere = isSphere[h.shape];
         return r;
     };
     runRayBenchmark("bdpt", args, build, trace);
