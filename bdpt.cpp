@@ -4637,7 +4637,10 @@ inline void warnAboutScene(const Scene& scene, const RenderOptions& opt, std::os
     o.maxDepth = std::min(opt.maxDepth, 8);
     o.quiet = true;
     o.threads = 1;
-    if (imageMean(render(preview, o).image) == 0)
+    // Every sample is >= 0: if the first pass sees light, all 16 would. Most scenes stop there.
+    RenderOptions firstPass = o;
+    firstPass.spp = 1;
+    if (imageMean(render(preview, firstPass).image) == 0 && imageMean(render(preview, o).image) == 0)
         err << scene.file << ": warning: a quick preview (" << methodName(o.method) << ", 32x32, 16 samples per pixel) sees no light at all: is a light "
                "facing away (a quad emits from its u x v side only), or shut in?\n";
 }
