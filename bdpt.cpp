@@ -2009,26 +2009,32 @@ inline Vec3 sampleBDPT(const Scene& scene, const RenderOptions& opt, const PassD
 // bucket is visited once. The points are kept in bucket order, so that a query reads each
 // bucket's points one after another (the queries are what merging costs: memory, not math).
 struct HashGrid {
-    float radius = 0;
+    float radius = 0, cellsPerUnit = 0;  // cells of side 2 r
+    uint32_t bucketMask = 0;             // a power of two of buckets, at least one per point, minus 1
     std::vector<uint32_t> bucketStart;  // bucket b holds points[bucketStart[b] .. bucketStart[b+1])
     std::vector<Vec3> points;           // in bucket order
     std::vector<uint32_t> entries;      // points[e] is the caller's point entries[e]
 };
 
-inline uint32_t gridBucket(const HashGrid& g, Vec3 p, int dx, int dy, int dz) {
-    float cell = 2 * g.radius;
-    auto coordinate = [&](float x, int d) { return uint32_t(int64_t(std::floor(x / cell)) + d); };
-    uint32_t h = coordinate(p.x, dx) * 73856093u ^ coordinate(p.y, dy) * 19349663u ^ coordinate(p.z, dz) * 83492791u;
-    return h % uint32_t(g.bucketStart.size() - 1);
+inline int64_t gridCell(const HashGrid& g, float x) { return int64_t(std::floor(x * g.cellsPerUnit)); }
+inline uint32_t gridBucket(const HashGrid& g, int64_t x, int64_t y, int64_t z) {
+    return (uint32_t(x) * 73856093u ^ uint32_t(y) * 19349663u ^ uint32_t(z) * 83492791u) & g.bucketMask;
 }
 
 inline void buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius) {
     g.radius = radius;
-    g.bucketStart.assign(std::max<size_t>(1, points.size()) + 1, 0);
+    g.cellsPerUnit = radius > 0 ? 0.5f / radius : 0;
+    size_t buckets = 1;
+    while (buckets < points.size()) buckets *= 2;
+    g.bucketMask = uint32_t(buckets - 1);
+    g.bucketStart.assign(buckets + 1, 0);
     g.entries.resize(points.size());
     g.points.resize(points.size());
     std::vector<uint32_t> bucket(points.size());
-    for (size_t i = 0; i < points.size(); ++i) ++g.bucketStart[(bucket[i] = gridBucket(g, points[i], 0, 0, 0)) + 1];
+    for (size_t i = 0; i < points.size(); ++i) {
+        Vec3 p = points[i];
+        ++g.bucketStart[(bucket[i] = gridBucket(g, gridCell(g, p.x), gridCell(g, p.y), gridCell(g, p.z))) + 1];
+    }
     for (size_t b = 1; b < g.bucketStart.size(); ++b) g.bucketStart[b] += g.bucketStart[b - 1];
     std::vector<uint32_t> fill(g.bucketStart.begin(), g.bucketStart.end() - 1);
     for (size_t i = 0; i < points.size(); ++i) {
@@ -2043,17 +2049,17 @@ inline void buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float ra
 template <class Visit>
 inline void forEachNeighbour(const HashGrid& g, Vec3 p, Visit&& visit) {
     if (g.points.empty()) return;
-    float cell = 2 * g.radius, r2 = g.radius * g.radius;
-    // The cells of p - r and p + r: the same or the next one on each axis.
-    auto next = [&](float x) { return int(std::floor((x + g.radius) / cell) - std::floor((x - g.radius) / cell)); };
-    Vec3 low = p - Vec3(g.radius);
-    int nx = next(p.x), ny = next(p.y), nz = next(p.z);
-    uint32_t buckets[27], begin[27], end[27];  // 8 unless a division rounds p - r and p + r three cells apart
+    const float r2 = g.radius * g.radius;
+    // The cells of p - r and p + r on each axis: the same or the next one (two apart only if
+    // rounding says so), computed as the build computes a point's.
+    int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = gridCell(g, p[a] - g.radius), hi[a] = gridCell(g, p[a] + g.radius);
+    uint32_t buckets[27], begin[27], end[27];  // 8 unless rounding puts p - r and p + r three cells apart
     int count = 0;
-    for (int dz = 0; dz <= nz; ++dz)
-        for (int dy = 0; dy <= ny; ++dy)
-            for (int dx = 0; dx <= nx; ++dx) {
-                uint32_t b = gridBucket(g, low, dx, dy, dz);
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+        for (int64_t y = lo[1]; y <= hi[1]; ++y)
+            for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+                uint32_t b = gridBucket(g, x, y, z);
                 if (std::find(buckets, buckets + count, b) != buckets + count) continue;
                 buckets[count++] = b;
                 __builtin_prefetch(&g.bucketStart[b]);
