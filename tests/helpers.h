@@ -64,6 +64,24 @@ inline RenderOptions quietOptions(Method m, int spp, uint64_t seed = 1) {
     return o;
 }
 
+// Pixel by pixel over images of independent seeds: the sample variance of a pixel's value (its
+// squared error, where the estimator is unbiased), summed over `pixels`, and their mean value.
+struct SpreadOverSeeds {
+    double varianceSum = 0, mean = 0;
+};
+inline SpreadOverSeeds spreadOverSeeds(const std::vector<Image>& images, const std::vector<std::pair<int, int>>& pixels) {
+    SpreadOverSeeds s;
+    const double n = double(images.size());
+    for (auto [x, y] : pixels) {
+        double m = 0, v = 0;
+        for (const Image& im : images) m += average(im.at(x, y)) / n;
+        for (const Image& im : images) v += sqr(float(average(im.at(x, y)) - m)) / (n - 1);
+        s.varianceSum += v;
+        s.mean += m / double(pixels.size());
+    }
+    return s;
+}
+
 struct RegionEstimate {
     std::vector<double> mean, stdError;  // per region; the last entry is the whole image
 };

@@ -132,15 +132,11 @@ TEST_CASE("bdpt with --sampler sobol: the variance over seeds falls at least as 
             o.sampler = sampler;
             images.push_back(render(scene, o).image);
         }
-        double sum = 0;
+        std::vector<std::pair<int, int>> awayFromLamp;
         for (int y = 0; y < scene.camera.height; ++y)
-            for (int x = 0; x < scene.camera.width; ++x) {
-                double m = 0, v = 0;
-                for (const Image& im : images) m += average(im.at(x, y)) / seeds;
-                for (const Image& im : images) v += sqr(average(im.at(x, y)) - m) / (seeds - 1);
-                if (!nearLamp(images[0], x, y)) sum += v;
-            }
-        return sum;
+            for (int x = 0; x < scene.camera.width; ++x)
+                if (!nearLamp(images[0], x, y)) awayFromLamp.push_back({x, y});
+        return spreadOverSeeds(images, awayFromLamp).varianceSum;
     };
     for (Sampler sampler : {Sampler::Sobol, Sampler::Random}) {
         double fall = varianceOverSeeds(sampler, 64) / varianceOverSeeds(sampler, 512);
