@@ -72,6 +72,10 @@ refs: bdpt
 charts: bdpt
 	+tests/charts.sh charts
 
+# Every figure of a class, for a projector, into build/class/ (tests/class.sh).
+class: bdpt
+	@tests/class.sh
+
 # The slides' six panels at 40 paths per pixel, for a class: build/panels/six-panels-40.png.
 panels: bdpt
 	@echo "make panels: six renders at 40 paths per pixel, about half a minute, into build/panels/"
@@ -98,11 +102,13 @@ help:
 	@echo "make run        render scenes/cornell.scene into build/cornell.png (seconds)"
 	@echo "make test       every test file, one line each (about 3 minutes on 2 cores); make test-sanitize (about 11)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
+	@echo "make class      a class's figures for a projector (six panels at equal samples and time, pyramid,"
+	@echo "                mistakes, sds, Metropolis, error-vs-time charts): build/class/ (about 4 minutes)"
 	@echo "make uneven     bdpt, mlt, pssmlt and mmlt per region on the door: build/uneven-door.png (about 1 minute)"
 	@echo "make charts     error against time, every method and scene, and both samplers, 1.5 s a run: build/charts/ (about 5 minutes)"
 	@echo "make efficiency 1/(MSE x CPU-s) of every method, 64 samples, 2 seeds: build/efficiency.md (about 2 minutes)"
 	@echo "make metropolis mlt, pssmlt and mmlt against bdpt, 8 seeds, two sizes: build/metropolis.md (about 45 minutes)"
-	@echo "make bench      our BVH against Embree, cost per sample: printed only (about 3 minutes)"
+	@echo "make bench      our BVH against Embree, cost per sample and where it goes: printed only (about 4 minutes)"
 	@echo "                FULL=1 after charts, efficiency or bench: the notes' budgets (12, 12 and 15 minutes)"
 	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 35 minutes)"
 	@echo "make refs       REWRITES the committed references in scenes/refs/ (about 95 minutes)"
@@ -167,4 +173,4 @@ uneven: build/uneven
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize fuzz bench efficiency metropolis uneven refs charts panels figures help clean FORCE
+.PHONY: all run test test-sanitize fuzz bench efficiency metropolis uneven refs charts panels class figures help clean FORCE

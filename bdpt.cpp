@@ -27,6 +27,8 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -859,11 +861,46 @@ struct RayCount {
 };
 inline thread_local RayCount gRaysTraced;
 
+// --profile: where a sample's time goes, by part of the work. The clock charges the time since its
+// last reading to the part running then; a CostScope enters a part and, when it ends, hands the
+// clock back to the part it interrupted (tracing inside a merge is tracing). Off, a scope costs a
+// test of a flag. --profile renders on one thread, so one clock serves.
+enum class Cost { Other, Tracing, Mis, Merging, Count };  // Other: shading, sampling, camera, film
+struct CostClock {
+    bool on = false;
+    Cost current = Cost::Other;
+    uint64_t last = 0, ticks[int(Cost::Count)] = {};
+    static uint64_t now() {
+#if defined(__x86_64__) || defined(__i386__)
+        return __builtin_ia32_rdtsc();  // the time stamp counter: a few cycles where a clock call is tens
+#else
+        return uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
+#endif
+    }
+    void switchTo(Cost next) {
+        uint64_t t = now();
+        ticks[int(current)] += t - last;
+        last = t, current = next;
+    }
+};
+inline CostClock gCostClock;
+struct CostScope {
+    Cost outer = gCostClock.current;
+    explicit CostScope(Cost part) {
+        if (gCostClock.on) gCostClock.switchTo(part);
+    }
+    ~CostScope() {
+        if (gCostClock.on) gCostClock.switchTo(outer);
+    }
+};
+
 inline Hit intersect(const Scene& scene, const Ray& ray) {
+    CostScope cost(Cost::Tracing);
     ++gRaysTraced.closest;
     return scene.bruteForce ? intersectBruteForce(scene.shapes, ray) : traverseBvh<false>(scene.bvh, ray);
 }
 inline bool occluded(const Scene& scene, const Ray& ray) {
+    CostScope cost(Cost::Tracing);
     ++gRaysTraced.shadow;
     return scene.bruteForce ? occludedBruteForce(scene.shapes, ray) : traverseBvh<true>(scene.bvh, ray).found();
 }
@@ -1435,15 +1472,10 @@ inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& 
 // included, section 4) and 1/d^2; V is a shadow ray. Light tracing is the connection to the
 // pinhole (t = 1) alone, instant radiosity the connection of one camera vertex to stored light
 // vertices, bdpt every connection.
-// What bdpt's MIS walk reads of a vertex (its banner below). vcm's merges walk light subpaths
-// that lie elsewhere in memory, and read a compact copy of just this.
-struct MisVertex {
+struct PathVertex {
     double pdfFwd = 0, pdfRev = 0;  // area densities of sampling it from its own side and from the other
     bool delta = false;             // a delta BSDF was sampled here
     bool deltaPosition = false;     // the pinhole, a point light
-};
-
-struct PathVertex : MisVertex {
     enum Type : unsigned char { Camera, Light, Surface } type = Surface;
     float continuation = 1;         // Roulette::Albedo: probability that a walk goes on from here
     SurfacePoint sp;        // p and ng for every type; sp.shape < 0 for the pinhole and point lights
@@ -1857,9 +1889,7 @@ struct MisSum {
 // the density by pdfRev(x)/pdfFwd(x). Merges (mergeEta > 0, vcm): the merge at x, once x has
 // moved to the camera side (light side), has the density p * mergeEta * pdfFwd(x), with its own
 // subpath's pdfFwd.
-// The light side is read by light[i] alone: a Subpath, or (merges) vcm's compact MisVertex copy.
-template <class LightSide>
-inline void misWalk(const LightSide& light, int s, Subpath camera, int t, double mergeEta, const Junction& j, double r0, MisSum& m) {
+inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta, const Junction& j, double r0, MisSum& m) {
     auto cameraRev = [&](int i) { return i == t - 1 ? j.ptRev : i == t - 2 ? j.ptMinusRev : camera[i].pdfRev; };
     auto lightRev = [&](int i) { return i == s - 1 ? j.qsRev : i == s - 2 ? j.qsMinusRev : light[i].pdfRev; };
     // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
@@ -1888,6 +1918,7 @@ inline void misWalk(const LightSide& light, int s, Subpath camera, int t, double
 inline float misWeight(const Scene& scene, Subpath light, int s, Subpath camera, int t, Heuristic heuristic, const Connection& c,
                        double mergeEta) {
     if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
+    CostScope cost(Cost::Mis);
     MisSum m{heuristic};
     m.add(1);  // (s,t) itself
     misWalk(light, s, camera, t, mergeEta, connectionJunction(scene, light, s, camera, t, c), 1, m);
@@ -2006,14 +2037,13 @@ inline Vec3 sampleBDPT(const Scene& scene, const RenderOptions& opt, const PassD
 
 // A uniform grid of cells of side 2r, hashed into as many buckets as points: a query sphere of
 // radius r then overlaps at most 2 cells per axis, 8 in all. Two cells may share a bucket; a
-// bucket is visited once. The points are kept in bucket order, so that a query reads each
-// bucket's points one after another (the queries are what merging costs: memory, not math).
+// bucket is visited once. The caller keeps its records (each with its point p) in bucket order,
+// so that a query reads each bucket's records one after another: the queries are what merging
+// costs, and that cost is memory, not math.
 struct HashGrid {
     float radius = 0, cellsPerUnit = 0;  // cells of side 2 r
     uint32_t bucketMask = 0;             // a power of two of buckets, at least one per point, minus 1
-    std::vector<uint32_t> bucketStart;  // bucket b holds points[bucketStart[b] .. bucketStart[b+1])
-    std::vector<Vec3> points;           // in bucket order
-    std::vector<uint32_t> entries;      // points[e] is the caller's point entries[e]
+    std::vector<uint32_t> bucketStart;  // bucket b holds records bucketStart[b] .. bucketStart[b+1] - 1
 };
 
 inline int64_t gridCell(const HashGrid& g, float x) { return int64_t(std::floor(x * g.cellsPerUnit)); }
@@ -2021,34 +2051,31 @@ inline uint32_t gridBucket(const HashGrid& g, int64_t x, int64_t y, int64_t z) {
     return (uint32_t(x) * 73856093u ^ uint32_t(y) * 19349663u ^ uint32_t(z) * 83492791u) & g.bucketMask;
 }
 
-inline void buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius) {
+// Builds the grid of `points` and returns the bucket order: the grid's record e is the one of
+// points[order[e]].
+inline std::vector<uint32_t> buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius) {
     g.radius = radius;
     g.cellsPerUnit = radius > 0 ? 0.5f / radius : 0;
     size_t buckets = 1;
     while (buckets < points.size()) buckets *= 2;
     g.bucketMask = uint32_t(buckets - 1);
     g.bucketStart.assign(buckets + 1, 0);
-    g.entries.resize(points.size());
-    g.points.resize(points.size());
-    std::vector<uint32_t> bucket(points.size());
+    std::vector<uint32_t> bucket(points.size()), order(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
         Vec3 p = points[i];
         ++g.bucketStart[(bucket[i] = gridBucket(g, gridCell(g, p.x), gridCell(g, p.y), gridCell(g, p.z))) + 1];
     }
     for (size_t b = 1; b < g.bucketStart.size(); ++b) g.bucketStart[b] += g.bucketStart[b - 1];
     std::vector<uint32_t> fill(g.bucketStart.begin(), g.bucketStart.end() - 1);
-    for (size_t i = 0; i < points.size(); ++i) {
-        uint32_t e = fill[bucket[i]]++;
-        g.entries[e] = uint32_t(i);
-        g.points[e] = points[i];
-    }
+    for (size_t i = 0; i < points.size(); ++i) order[fill[bucket[i]]++] = uint32_t(i);
+    return order;
 }
 
-// Calls visit(e) for every point e (in bucket order) within the grid's radius of p, in a fixed
-// order.
-template <class Visit>
-inline void forEachNeighbour(const HashGrid& g, Vec3 p, Visit&& visit) {
-    if (g.points.empty()) return;
+// Calls visit(e) for every record e (records: in bucket order, each with its point .p) within the
+// grid's radius of p, in a fixed order.
+template <class Record, class Visit>
+inline void forEachNeighbour(const HashGrid& g, const std::vector<Record>& records, Vec3 p, Visit&& visit) {
+    if (records.empty()) return;
     const float r2 = g.radius * g.radius;
     // The cells of p - r and p + r on each axis: the same or the next one (two apart only if
     // rounding says so), computed as the build computes a point's.
@@ -2064,53 +2091,47 @@ inline void forEachNeighbour(const HashGrid& g, Vec3 p, Visit&& visit) {
                 buckets[count++] = b;
                 __builtin_prefetch(&g.bucketStart[b]);
             }
-    // Each bucket is two cache misses (its start, its first point): asked for all at once, they
+    // Each bucket is two cache misses (its start, its first record): asked for all at once, they
     // overlap, and the query costs about two misses instead of sixteen.
     for (int i = 0; i < count; ++i) {
         begin[i] = g.bucketStart[buckets[i]];
         end[i] = g.bucketStart[buckets[i] + 1];
-        if (begin[i] < end[i]) __builtin_prefetch(&g.points[begin[i]]);
+        if (begin[i] < end[i]) __builtin_prefetch(&records[begin[i]]);
     }
     for (int i = 0; i < count; ++i)
         for (uint32_t e = begin[i]; e < end[i]; ++e) {
-            Vec3 d = g.points[e] - p;
+            Vec3 d = records[e].p - p;
             if (dot(d, d) <= r2) visit(e);
         }
 }
 
 // The pass's light subpaths: pixel p's is paths[p], its vertices stored row by row (the
-// connections need them whole). The mergeable ones also go into the grid, as records.
+// connections need them whole). A merge reads its light vertex and the ones before it there, as
+// a connection reads its own pixel's: the grid adds only where each mergeable vertex lies and
+// which it is (16 bytes in all), not a second copy of what the vertices already hold.
 struct VcmPass {
     float radius = 0;
     double mergeEta = 0;                  // pi r^2 N_light; 0: no merging (vcm is bdpt)
     std::vector<std::vector<PathVertex>> rowVertices;
     std::vector<Subpath> paths;
-    std::vector<MisVertex> misVertices;   // the MIS walk's part of every light vertex, path after path
-    // A mergeable light vertex y = light[index] of paths[path] with what its merges need of the
-    // light subpath (qs = light[index - 1]); the walk reads misVertices[misFirst ...].
-    struct Stored {
-        Vec3 wo, beta;                    // y's
-        double pdfFwd;                    // y's
-        double qsAreaFactor;              // cos at qs / |qs - y|^2: a solid-angle density at y -> area at qs
-        uint32_t path, index, misFirst;
-        bool qsDelta;
+    struct Stored {                       // the mergeable vertex first[index] of a light subpath, at p
+        Vec3 p;
+        uint32_t index;
+        const PathVertex* first;
     };
     std::vector<Stored> stored;           // in the grid's bucket order
     HashGrid grid;
     size_t bytes() const {  // what the light vertices and the grid take
         size_t b = 0;
         for (const std::vector<PathVertex>& row : rowVertices) b += row.capacity() * sizeof(PathVertex);
-        return b + paths.capacity() * sizeof(Subpath) + misVertices.capacity() * sizeof(MisVertex) + stored.capacity() * sizeof(Stored) +
-               grid.points.capacity() * sizeof(Vec3) +
-               (grid.bucketStart.capacity() + grid.entries.capacity()) * sizeof(uint32_t);
+        return b + paths.capacity() * sizeof(Subpath) + stored.capacity() * sizeof(Stored) + grid.bucketStart.capacity() * sizeof(uint32_t);
+    }
+    size_t vertexCount() const {
+        size_t n = 0;
+        for (const std::vector<PathVertex>& row : rowVertices) n += row.size();
+        return n;
     }
 };
-
-// The record of vertex i of the light subpath `light`, which is the pass's subpath number `path`.
-inline VcmPass::Stored storedVertex(Subpath light, int i, uint32_t path, uint32_t misFirst) {
-    const PathVertex &y = light[i], &qs = light[i - 1];
-    return {y.wo, y.beta, y.pdfFwd, cosAt(qs, y.wo) / double(y.prevDist2), path, uint32_t(i), misFirst, qs.delta};
-}
 
 // r_0 when --radius is not given: one pixel's footprint where the central camera ray meets the
 // first non-specular surface (straight through glass and mirrors: a glass ball around the
@@ -2142,107 +2163,116 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
     const int W = scene.camera.width, H = scene.camera.height;
     vp.radius = mergeRadius(scene, opt, pass);
     vp.mergeEta = double(kPi) * vp.radius * vp.radius * double(W) * H;
-    vp.rowVertices.resize(H);  // kept from pass to pass: a row's vertices are refilled, not reallocated
+    // A row is kept from pass to pass and refilled at its exact length (assign reallocates only to
+    // grow, and then to the size asked): growing by doubling would leave a third of it unused.
+    vp.rowVertices.resize(H);
     std::vector<std::vector<int>> rowLengths(H);
     RayCount traced = parallelRows(H, threads, [&](int y, bool) {
-        thread_local std::vector<PathVertex> path;
-        vp.rowVertices[y].clear();
+        thread_local std::vector<PathVertex> path, row;
+        row.clear();
         for (int x = 0; x < W; ++x) {
             Rng rng = lightPathRng(opt, y * W + x, pass);
             lightSubpath(scene, opt, rng, path);
-            vp.rowVertices[y].insert(vp.rowVertices[y].end(), path.begin(), path.end());
+            row.insert(row.end(), path.begin(), path.end());
             rowLengths[y].push_back(int(path.size()));
         }
+        vp.rowVertices[y].assign(row.begin(), row.end());
     });
     rays += traced;
+    CostScope cost(Cost::Merging);  // what bdpt does not: keeping the subpaths, the grid
     vp.paths.clear();
-    vp.misVertices.clear();
     vp.stored.clear();
-    std::vector<Vec3> points;  // of the stored vertices, for the grid (which keeps its own copy)
+    std::vector<VcmPass::Stored> mergeable;  // in path order, then (stored) in the grid's
+    std::vector<Vec3> points;
     for (int y = 0; y < H; ++y) {
         const PathVertex* v = vp.rowVertices[y].data();
         for (int n : rowLengths[y]) {
-            uint32_t path = uint32_t(vp.paths.size()), misFirst = uint32_t(vp.misVertices.size());
             vp.paths.emplace_back(v, n);
-            vp.misVertices.insert(vp.misVertices.end(), v, v + n);  // each vertex's MisVertex part
             for (int i = 1; i < n && vp.radius > 0; ++i)
                 if (connectable(scene, v[i])) {
-                    vp.stored.push_back(storedVertex(Subpath(v, n), i, path, misFirst));
+                    mergeable.push_back({v[i].sp.p, uint32_t(i), v});
                     points.push_back(v[i].sp.p);
                 }
             v += n;
         }
     }
     if (vp.radius <= 0) return;
-    buildHashGrid(vp.grid, points, vp.radius);
-    std::vector<VcmPass::Stored> byBucket(vp.stored.size());
-    for (size_t e = 0; e < byBucket.size(); ++e) byBucket[e] = vp.stored[vp.grid.entries[e]];
-    vp.stored.swap(byBucket);
+    vp.stored.reserve(mergeable.size());  // exactly, where it grows
+    for (uint32_t i : buildHashGrid(vp.grid, points, vp.radius)) vp.stored.push_back(mergeable[i]);
 }
 
-// w of the merge of camera[t-1] with y = light[j] (light: y's light subpath; y its record): the
-// path is light[0..j-1] + camera[t-1..0] as for the connection (j, t), y's density of reaching
-// the merged vertex counted once. pdf and pdfReverse: camera[t-1]'s BSDF densities of sampling
-// y.wo from camera[t-1].wo and back.
+// w of the merge of camera[t-1] with y = light[j]: the path is light[0..j-1] + camera[t-1..0] as
+// for the connection (j, t), y's density of reaching the merged vertex counted once. pdf and
+// pdfReverse: camera[t-1]'s BSDF densities of sampling y.wo from camera[t-1].wo and back.
 // The max heuristic evaluates the merged path on one geometry, the connection (j, t)'s, with the
 // camera vertex x where y was: in the furnace many strategies have exactly equal densities, and
 // y's densities mixed with x's would make ties flip from one photon to the next (a visible bias;
 // notes, page 15); the other heuristics, continuous in the densities, change by O(r) only.
 // That costs one more BSDF evaluation per merge, at light[j-1]. After a delta event at light[j-1]
 // only y lies on the sampled direction, and y's geometry is kept.
-inline float mergeWeight(const Scene& scene, Subpath light, const MisVertex* lightMis, const VcmPass::Stored& y, Subpath camera, int t,
-                         Heuristic heuristic, double mergeEta, float pdf, float pdfReverse) {
-    const int j = int(y.index);
-    const PathVertex& x = camera[t - 1];
+inline float mergeWeight(const Scene& scene, Subpath light, int j, Subpath camera, int t, Heuristic heuristic, double mergeEta, float pdf,
+                         float pdfReverse) {
+    CostScope cost(Cost::Mis);
+    const PathVertex &x = camera[t - 1], &y = light[j], &qs = light[j - 1];
     Junction jn;
     double self = mergeEta * y.pdfFwd;  // p_merge / p_{j,t}
-    if (heuristic == Heuristic::Max && !y.qsDelta) {
+    if (heuristic == Heuristic::Max && !qs.delta) {
         Connection c;
-        evalConnection(scene, light[j - 1], x, c);
+        evalConnection(scene, qs, x, c);
         jn = connectionJunction(scene, light, j, camera, t, c);
         self = mergeEta * jn.ptRev;
     } else {
         jn.ptRev = y.pdfFwd;
-        jn.qsRev = pdf * x.continuation * y.qsAreaFactor;
+        jn.qsRev = pdf * x.continuation * (cosAt(qs, y.wo) / double(y.prevDist2));  // at x, toward qs, as an area density at qs
         jn.ptMinusRev = toArea(pdfReverse * x.continuation, camera[t - 2], x.wo, x.prevDist2);
-        jn.qsMinusRev = j >= 2 ? lightMis[j - 2].pdfRev : 0;
+        jn.qsMinusRev = j >= 2 ? light[j - 2].pdfRev : 0;
     }
     jn.lightEndDelta = true;
     if (!(self > 0)) return 0;  // a light vertex sampled with density 0 cannot be merged
     MisSum m{heuristic};
-    if (!y.qsDelta) m.add(1 / self);  // the connection (j, t)
-    misWalk(lightMis, j, camera, t, mergeEta, jn, 1 / self, m);  // the merge itself among them
+    if (!qs.delta) m.add(1 / self);  // the connection (j, t)
+    misWalk(light, j, camera, t, mergeEta, jn, 1 / self, m);  // the merge itself among them
     return m.weight();
 }
 
 // Every merge at the camera vertices z_1..z_{t-1}: the vertices of all light subpaths of the
-// pass within r (their own pixel's as well: a merge is not a connection).
+// pass within r (their own pixel's as well: a merge is not a connection). The merges of a query
+// are found first and their light vertices asked for at once, so that their cache misses
+// overlap: each then reads its vertex y and the ones before it (the walk) from memory already
+// on its way.
 inline Vec3 mergeCameraVertices(const Scene& scene, const RenderOptions& opt, const VcmPass& vp, const std::vector<PathVertex>& camera,
                                 int here, RowOutput& out) {
+    thread_local std::vector<const VcmPass::Stored*> found;
+    CostScope cost(Cost::Merging);
     Vec3 L(0);
     for (int t = 2; t <= int(camera.size()); ++t) {
         const PathVertex& x = camera[t - 1];
         if (!connectable(scene, x)) continue;
-        forEachNeighbour(vp.grid, x.sp.p, [&](uint32_t n) {
-            const VcmPass::Stored& y = vp.stored[n];
-            int k = int(y.index) + t - 1;  // path length: index + 1 light vertices, t camera, one shared
-            if (k - 1 > opt.maxDepth) return;
-            const MisVertex* lightMis = &vp.misVertices[y.misFirst];  // the weight walks it: asked for now, it arrives during evalBsdf
-            __builtin_prefetch(lightMis);
-            __builtin_prefetch(lightMis + y.index);
+        found.clear();
+        forEachNeighbour(vp.grid, vp.stored, x.sp.p, [&](uint32_t n) {
+            const VcmPass::Stored& merge = vp.stored[n];
+            if (int(merge.index) + t - 2 > opt.maxDepth) return;  // k - 1 bounces, k = index + t - 1
+            __builtin_prefetch(&merge.first[merge.index]);
+            __builtin_prefetch(&merge.first[merge.index].beta);
+            found.push_back(&merge);
+        });
+        for (const VcmPass::Stored* merge : found) {
+            Subpath light(merge->first, int(merge->index) + 1);
+            const PathVertex& y = light[int(merge->index)];
             float pdf, pdfReverse;
             Vec3 f = evalBsdf(scene, x.sp, x.wo, y.wo, Transport::Radiance, pdf, pdfReverse);
             float cosLight = absDot(y.wo, x.sp.ng);  // the light subpath's flux arrived through ng
-            if (isBlack(f) || cosLight == 0) return;
+            if (isBlack(f) || cosLight == 0) continue;
             Vec3 c = x.beta * f * y.beta / (cosLight * float(vp.mergeEta));
-            float w = mergeWeight(scene, vp.paths[y.path], lightMis, y, camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
+            float w = mergeWeight(scene, light, int(merge->index), camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
             L += c * w;
+            int k = int(merge->index) + t - 1;  // path length: index + 1 light vertices, t camera, one shared
             if (opt.strategyMaxLength > 0 && k <= opt.strategyMaxLength) {
                 int image = mergeImageIndex(k, opt.strategyMaxLength);
                 out.strategySplats.push_back({here, c, 2 * image});
                 out.strategySplats.push_back({here, c * w, 2 * image + 1});
             }
-        });
+        }
     }
     return L;
 }
@@ -3254,6 +3284,7 @@ struct RenderResult {
     RayCount rays;                  // all threads, all passes (ir's VPL paths included)
     size_t lightVertexBytes = 0;    // vcm: the most one pass's light subpaths and grid took
     long long mergeableVertices = 0;  // vcm: in the grid, summed over passes
+    long long lightVertices = 0;      // vcm: of the light subpaths, summed over passes
     double mltB = 0, mltBError = 0;   // mlt, mmlt: the final b (bootstrap and large steps) and its standard error
     long long mltAccepted = 0, mltProposed = 0;
     long long mutationsAccepted[3] = {0, 0, 0}, mutationsProposed[3] = {0, 0, 0};  // mlt: bidirectional, lens, caustic
@@ -3457,6 +3488,7 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
         result.rays += storage.rays;
         result.lightVertexBytes = std::max(result.lightVertexBytes, storage.vcm.bytes());
         result.mergeableVertices += (long long)storage.vcm.stored.size();
+        result.lightVertices += (long long)storage.vcm.vertexCount();
         result.passMeans.push_back(film.addPass(pass, rows, result));
         if (opt.onPass) opt.onPass(p, pass, result.nonFinite);
         result.passes = p + 1;
@@ -3626,18 +3658,26 @@ inline Image ratioColours(const Image& ratio) {
     return c;
 }
 
-// Labels for the strategy pyramid: a 5-pixel-high font of the few characters it needs, 3 pixels
-// wide but for 'm', which needs 5 to read as m and not n.
+// Labels burned into images (the strategy pyramid, --side-by-side): a 5-pixel-high font, 3
+// pixels wide but for 'm' and 'w', which need 5 to read as themselves; drawn `scale` times larger.
 inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, int x0, int y0, const std::string& text, int scale) {
     static const std::map<char, const char*> glyphs = {
         {'0', "111101101101111"}, {'1', "010110010010111"}, {'2', "111001111100111"}, {'3', "111001111001111"},
         {'4', "101101111001001"}, {'5', "111100111001111"}, {'6', "111100111101111"}, {'7', "111001001001001"},
-        {'8', "111101111101111"}, {'9', "111101111001111"}, {'s', "011100010001110"}, {'t', "010111010010011"},
-        {'=', "000111000111000"}, {' ', "000000000000000"}, {'k', "100101110101101"},
-        {'m', "0000011010101011010110101"}, {'+', "000010111010000"}};
+        {'8', "111101111101111"}, {'9', "111101111001111"}, {'a', "000011101101011"}, {'b', "100110101101110"},
+        {'c', "000011100100011"}, {'d', "001011101101011"}, {'e', "000010111100011"}, {'f', "011100110100100"},
+        {'g', "011101011001110"}, {'h', "100110101101101"}, {'i', "010000010010010"}, {'j', "001000001101010"},
+        {'k', "100101110101101"}, {'l', "110010010010111"}, {'m', "0000011010101011010110101"},
+        {'n', "000110101101101"}, {'o', "000010101101010"}, {'p', "000110101110100"}, {'q', "000011101011001"},
+        {'r', "000011100100100"}, {'s', "000011100001110"}, {'t', "010111010010011"}, {'u', "000101101101011"},
+        {'v', "000101101101010"}, {'w', "0000010001101011010101010"}, {'x', "000101010010101"},
+        {'y', "101101011001110"}, {'z', "111001010100111"}, {'.', "000000000000010"}, {',', "000000000010100"},
+        {':', "000010000010000"}, {'-', "000000111000000"}, {'+', "000010111010000"}, {'=', "000111000111000"},
+        {'(', "010100100100010"}, {')', "010001001001010"}, {'/', "001001010100100"}, {'%', "101001010100101"},
+        {' ', "000000000000000"}};
     int x = x0;
     for (char ch : text) {
-        auto g = glyphs.find(ch);
+        auto g = glyphs.find(char(std::tolower((unsigned char)ch)));
         if (g == glyphs.end()) continue;
         const int glyphWidth = int(std::strlen(g->second)) / 5;
         for (int gy = 0; gy < 5; ++gy)
@@ -3652,6 +3692,11 @@ inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, in
             }
         x += (glyphWidth + 1) * scale;
     }
+}
+inline int labelWidth(const std::string& text, int scale) {  // drawLabel's advance (about 4 scale a character)
+    int w = 0;
+    for (char ch : text) w += (ch == 'm' || ch == 'w' || ch == 'M' || ch == 'W' ? 6 : 4) * scale;
+    return w;
 }
 
 inline bool hasExtension(const std::string& path, const std::string& ext) {  // case-insensitive
@@ -3692,13 +3737,15 @@ inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
 // column s = vertices from the light (t = k+1-s from the camera), one image per strategy p_{k,s}.
 // Each tile's label sits in a strip above it, never on the image: the lamp, row 1's whole
 // content, lies at the top of the frame.
+// Each row is labelled with its k in a margin on the left.
 struct PyramidLayout {
     bool merges;  // vcm: a column "m k" of merges
-    int W, H, gap = 4, scale, strip, rowH, canvasW, canvasH;
+    int W, H, gap = 4, scale, strip, margin, rowH, canvasW, canvasH;
     PyramidLayout(int width, int height, int maxLength, bool withMerges)
         : merges(withMerges), W(width), H(height), scale(std::max(1, std::min(width / 40, height / 32))), strip(7 * scale),
-          rowH(strip + H + gap), canvasW((maxLength + 1 + merges) * (W + gap) + gap), canvasH(maxLength * rowH + gap) {}
-    int tileX(int k, int s, int maxLength) const { return gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap); }
+          margin(labelWidth("k=" + std::to_string(maxLength), scale) + 2 * gap), rowH(strip + H + gap),
+          canvasW(margin + (maxLength + 1 + merges) * (W + gap) + gap), canvasH(maxLength * rowH + gap) {}
+    int tileX(int k, int s, int maxLength) const { return margin + gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap); }
     int tileY(int k) const { return gap + (k - 1) * rowH + strip; }
 };
 
@@ -3730,6 +3777,7 @@ inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLe
                       canvas.begin() + 3 * (size_t(y0 + y) * layout.canvasW + x0));
         std::string label = tileName(k, s) + (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
         drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - 6 * layout.scale, label, layout.scale);
+        if (s == 0) drawLabel(canvas, layout.canvasW, layout.canvasH, layout.gap, y0 + (layout.H - 5 * layout.scale) / 2, "k=" + std::to_string(k), layout.scale);
     });
     return canvas;
 }
@@ -4074,6 +4122,8 @@ struct CommandLine {
     bool ratio = false;          // --ratio: write their block ratio to out
     bool exposureGiven = false;  // else the scene's exposure directive sets it
     bool overwrite = false;      // --overwrite: --out may replace a file the project ships
+    bool profile = false;        // --profile: one thread, the time per sample by part
+    std::vector<std::string> sideBySide;  // --side-by-side: one method and its options per entry
     std::set<std::string> given; // the options on the line
 };
 
@@ -4178,7 +4228,10 @@ inline const std::vector<OptionSpec> kOptions = {
      [](CL& cl, A& a) { cl.opt.heuristic = a.choice<Heuristic>("heuristic", kHeuristicNames); }},
     {"--radius", "R", {Method::VCM}, "--method vcm",
      "vcm: merging radius r_0 of the first pass (default: one pixel's footprint\n"
-     "where the central camera ray meets the scene); 0: no merging, as bdpt",
+     "where the central camera ray meets the scene); 0: no merging, as bdpt.\n"
+     "vcm keeps a pass's light subpaths, about 140 bytes per light vertex (the\n"
+     "vertex, and a grid record if mergeable), 1 to 6 light vertices per pixel on\n"
+     "the scenes: the summary line reports both",
      [](CL& cl, A& a) { cl.opt.mergeRadius = float(a.number(0, 1e30)); }},
     {"--alpha", "A", {Method::VCM}, "--method vcm",
      "vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1\n(default 0.75)",
@@ -4265,6 +4318,11 @@ inline const std::vector<OptionSpec> kOptions = {
     {"--seed", "S", {}, "", "seed of every pixel's random stream and scrambles (default 1)", [](CL& cl, A& a) { cl.opt.seed = uint64_t(a.integer(0, 9e15)); }},
     {"--threads", "N", {}, "", "worker threads (default: all cores); the image does not depend on N",
      [](CL& cl, A& a) { cl.opt.threads = int(a.integer(1, 1024)); }},
+    {"--profile", "", {}, "",
+     "render on one thread and print the time per sample split into tracing,\n"
+     "MIS weights, merging (vcm) and the rest (shading, sampling, camera, film),\n"
+     "from the CPU's time stamp counter; the clock adds about a tenth",
+     [](CL& cl, A&) { cl.profile = true; }},
     {nullptr, "", {}, "", "Output", nullptr},
     {"--out", "FILE.png", {}, "", "PNG file (default render.png); the PFM goes to FILE.pfm", [](CL& cl, A& a) { cl.out = a.value(); }},
     {"--res", "WxH", {}, "", "override the scene's resolution (e.g. --res 128x128)",
@@ -4290,6 +4348,19 @@ inline const std::vector<OptionSpec> kOptions = {
      "SECONDS (whole, by rename): an image viewer that reloads it shows the image\n"
      "converging (on a projector, say); --log is written as the passes finish",
      [](CL& cl, A& a) { cl.liveSeconds = a.number(1e-3, 1e6); }},
+    {"--side-by-side", "\"M1,M2 OPTIONS,...\"", {}, "",
+     "render several methods at once into one labelled image, panel by panel:\n"
+     "each entry a method and its own options (\"nee,nee --mis,ir --clamp 1e-5\"),\n"
+     "every other option shared; all run together on the cores, so --time T gives\n"
+     "each the same T seconds (equal time) and --spp N the same samples. Each\n"
+     "panel shows its samples, seconds and, with --ref, its RMSE; enlarged to at\n"
+     "least 1280 pixels wide; with --live a first frame at once. Each method's\n"
+     "PFM goes beside the PNG (FILE-1-pt.pfm, ...)",
+     [](CL& cl, A& a) {
+         std::stringstream list(a.value());
+         for (std::string entry; std::getline(list, entry, ',');) cl.sideBySide.push_back(entry);
+         if (cl.sideBySide.size() < 2 || cl.sideBySide.size() > 8) a.fail("--side-by-side needs 2 to 8 methods, separated by commas");
+     }},
     {"--help", "", {}, "", "this text", [](CL& cl, A&) { cl.help = true; }},
     {nullptr, "", {}, "",
      "Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;\n"
@@ -4362,6 +4433,10 @@ inline void checkCombinations(CommandLine& cl) {
         ArgReader::fail(std::string("--rr-start applies to pt, nee and --roulette throughput; --method ") + methodName(cl.opt.method) +
                         (cl.opt.roulette == Roulette::Albedo ? " ends its subpaths by --roulette albedo (the default), which acts from the first bounce on"
                                                              : " has --roulette off: no roulette at all"));
+    for (const char* alone : {"--method", "--log", "--strategies", "--profile"})
+        if (!cl.sideBySide.empty() && given(alone))
+            ArgReader::fail(std::string(alone) + " does not go with --side-by-side" +
+                            (std::string(alone) == "--method" ? ": name the methods in its list" : ": render that method alone"));
     if (given("--time") && given("--spp"))
         ArgReader::fail("--time and --spp both given: --time renders passes until the time is up, --spp a number of them; give one");
     if (!cl.strategiesDir.empty()) cl.opt.strategyMaxLength = cl.strategyLength;
@@ -4455,10 +4530,17 @@ inline int printFailureTable(const std::vector<std::string>& logs, std::ostream&
                 sx += x; sy += y; sxx += x * x; sxy += x * y; ++n;
             }
         double slope = n > 1 && n * sxx - sx * sx > 0 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0;
+        // A slope over a few passes is noise (a single pass's error spreads by tens of per cent), and
+        // so is a bias measured on them: such a row is marked, and said so.
+        constexpr int kFewPasses = 8;
+        if (n < kFewPasses)
+            err << path << ":0: warning: only " << n << " passes after the first tenth of the time: its slope and bias are "
+                << "noise, not the method's (a longer --time, or a quieter machine)\n";
         char row[512];
-        std::snprintf(row, sizeof row, "| %s | %s%s%s | %.2f | %+.1f%% | %.0f | %s |\n", scene.c_str(), method.c_str(),
-                      options.empty() ? "" : " ", options.c_str(), slope, 100 * std::atof(last[9].c_str()),
-                      std::atof(last[10].c_str()), last[11].c_str());
+        std::snprintf(row, sizeof row, "| %s | %s%s%s | %.2f%s | %+.1f%%%s | %.0f | %s |\n", scene.c_str(), method.c_str(),
+                      options.empty() ? "" : " ", options.c_str(), slope, n < kFewPasses ? " (few passes)" : "",
+                      100 * std::atof(last[9].c_str()), n < kFewPasses ? " (few passes)" : "", std::atof(last[10].c_str()),
+                      last[11].c_str());
         out << row;
     }
     return 0;
@@ -4576,13 +4658,15 @@ inline std::string checkOutputs(const CommandLine& cl, const std::string& pfm) {
 // What a render will hold, in bytes, known before it starts: per pixel the pass sums and squares
 // (6 doubles), the pass, the image and its variance (3 Vec3), the PNG's bytes, the log's running
 // mean, two sums per strategy image and the image written; vcm's light subpaths and grid of a
-// pass, bounded by 2 KB a pixel (its summary line reports what a run took); mlt's pass image and
+// pass: a vertex and its grid record (with the grid's bucket) per light vertex, at most 12 a pixel
+// (the scenes have 1 to 5.4; its summary line reports what a run took); mlt's pass image and
 // its chains' splats of one pass, bounded by 128 bytes a pixel; its chains' states do not grow
 // with the image. Appendix A gives the measurements behind both bounds.
 inline double estimatedBytes(const Scene& scene, const RenderOptions& opt, bool logging) {
     int images = strategyImageCount(opt);
     double perPixel = 6 * sizeof(double) + 3 * sizeof(Vec3) + 3 + (logging ? 3 * sizeof(double) + sizeof(Vec3) : 0) +
-                      images * (2 * 3 * sizeof(double) + sizeof(Vec3) + 3) + (opt.method == Method::VCM ? 2048 : 0) +
+                      images * (2 * 3 * sizeof(double) + sizeof(Vec3) + 3) +
+                      (opt.method == Method::VCM ? 12 * (sizeof(PathVertex) + sizeof(VcmPass::Stored) + 8) + sizeof(Subpath) : 0) +
                       (isMetropolis(opt.method) ? 128 : 0);
     return perPixel * scene.camera.width * scene.camera.height;
 }
@@ -4762,14 +4846,224 @@ struct PassLog {
     }
 };
 
+inline double threadCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// --profile's line: the render's CPU time per sample, split as the clock's ticks split.
+inline void printProfile(const CostClock& clock, double cpuSeconds, double samples, std::ostream& out) {
+    double ticks = 0;
+    for (uint64_t t : clock.ticks) ticks += double(t);
+    const double perSample = 1e6 * cpuSeconds / std::max(1.0, samples), share = 1 / std::max(1.0, ticks);
+    const char* names[] = {"shading and sampling", "tracing", "MIS", "merging"};
+    char text[128];
+    std::snprintf(text, sizeof text, "profile (one thread): %.3g us per sample:", perSample);
+    out << text;
+    for (Cost part : {Cost::Tracing, Cost::Mis, Cost::Merging, Cost::Other}) {
+        double f = double(clock.ticks[int(part)]) * share;
+        std::snprintf(text, sizeof text, "%s %s %.3g (%.0f%%)", part == Cost::Tracing ? "" : ",", names[int(part)], f * perSample, 100 * f);
+        out << text;
+    }
+    out << "\n";
+}
+
+// --side-by-side: several methods on one scene at once, each in a thread of its own (with its
+// share of the cores), so that they have the same time, and one labelled image of their running
+// means, rewritten every --live seconds from the first moment on.
+struct SideBySidePanel {
+    std::string label;  // the entry as written: "ir --clamp 1e-5"
+    CommandLine cl;
+    Scene scene;        // its own: the deliberate mistakes are the scene's
+    std::mutex lock;    // guards what follows, which the render's thread writes and the frames read
+    std::vector<double> sum;
+    int passes = 0;
+    double seconds = 0;
+    bool done = false, outOfMemory = false;
+    RenderResult result;
+};
+
+// The panels in a grid (up to 3 across, else two rows), each enlarged by a whole factor so that
+// the image is at least about 1280x720: a projector's size, read from the back of a room.
+struct SideBySideLayout {
+    int W, H, cols, rows, zoom, scale, strip, gap, panelW, panelH, canvasW, canvasH;  // W x H: the image's size
+    SideBySideLayout(int n, int width, int height) : W(width), H(height) {
+        cols = n <= 3 ? n : (n + 1) / 2;
+        rows = (n + cols - 1) / cols;
+        zoom = std::max({1, (1280 + cols * W - 1) / (cols * W), (600 + rows * H - 1) / (rows * H)});
+        panelW = W * zoom, panelH = H * zoom;
+        scale = std::max(2, panelW / 100);  // about 24 characters across a panel
+        gap = 2 * scale;
+        strip = 3 * 7 * scale + gap;        // three lines of text above each panel
+        canvasW = cols * (panelW + gap) + gap, canvasH = rows * (strip + panelH + gap) + gap;
+    }
+};
+
+inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const Image& ref,
+                                                  const SideBySideLayout& L) {
+    std::vector<unsigned char> canvas(size_t(L.canvasW) * L.canvasH * 3, 24);
+    for (size_t i = 0; i < panels.size(); ++i) {
+        SideBySidePanel& panel = *panels[i];
+        const int W = L.W, H = L.H;
+        Image mean(W, H);
+        int passes;
+        double seconds;
+        {
+            std::lock_guard<std::mutex> hold(panel.lock);
+            passes = panel.passes, seconds = panel.seconds;
+            for (size_t p = 0; passes > 0 && p < mean.pixels.size(); ++p)
+                for (int c = 0; c < 3; ++c) mean.pixels[p][c] = float(panel.sum[3 * p + c] / passes);
+        }
+        std::vector<unsigned char> rgb = toSRGBBytes(mean, panel.cl.opt.exposure);
+        const int x0 = L.gap + int(i % L.cols) * (L.panelW + L.gap), y0 = L.gap + int(i / L.cols) * (L.strip + L.panelH + L.gap);
+        for (int y = 0; y < L.panelH; ++y)
+            for (int x = 0; x < L.panelW; ++x)
+                std::copy_n(&rgb[3 * (size_t(y / L.zoom) * W + x / L.zoom)], 3, &canvas[3 * (size_t(y0 + L.strip + y) * L.canvasW + x0 + x)]);
+        std::string lines[3] = {panel.label, passes > 0 ? std::to_string(passes) + " spp  " + duration(seconds) : "starting", ""};
+        if (ref.width > 0 && passes > 0) {
+            char text[32];
+            std::snprintf(text, sizeof text, "rmse %.3g", compareToReference(mean, ref).rmse);
+            lines[2] = text;
+        }
+        for (int line = 0; line < 3; ++line) drawLabel(canvas, L.canvasW, L.canvasH, x0, y0 + line * 7 * L.scale, lines[line], L.scale);
+    }
+    return canvas;
+}
+
+// The panels' own command lines: the scene, the entry's method and options, and every option of
+// the whole line but those that name the one image (--out, --live) and --side-by-side itself.
+inline std::vector<std::unique_ptr<SideBySidePanel>> sideBySidePanels(const std::vector<std::string>& args, const CommandLine& cl) {
+    std::vector<std::string> shared;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--side-by-side" || args[i] == "--out" || args[i] == "--live") { ++i; continue; }
+        if (args[i] != "--overwrite" && args[i] != cl.scenePath) shared.push_back(args[i]);
+    }
+    std::vector<std::unique_ptr<SideBySidePanel>> panels;
+    for (const std::string& entry : cl.sideBySide) {
+        std::vector<std::string> line = {cl.scenePath, "--method"};
+        std::stringstream words(entry);
+        for (std::string w; words >> w;) line.push_back(w);
+        if (line.size() == 2) ArgReader::fail("--side-by-side has an empty entry (two commas, or one at an end)");
+        line.insert(line.end(), shared.begin(), shared.end());
+        auto panel = std::make_unique<SideBySidePanel>();
+        try {
+            panel->cl = parseCommandLine(line);
+        } catch (const InputError& e) {
+            throw InputError(std::string(e.what()) + ", in --side-by-side's entry '" + printable(entry) + "'");
+        }
+        std::stringstream label(entry);
+        for (std::string w; label >> w;) panel->label += (panel->label.empty() ? "" : " ") + w;
+        panels.push_back(std::move(panel));
+    }
+    return panels;
+}
+
+inline int runSideBySide(const std::vector<std::string>& args, CommandLine& cl, const Scene& scene, const Image& ref, std::ostream& out,
+                         std::ostream& err) {
+    std::vector<std::unique_ptr<SideBySidePanel>> panels;
+    try {
+        panels = sideBySidePanels(args, cl);
+    } catch (const InputError& e) {
+        err << e.what() << "\n";
+        return 2;
+    }
+    const int n = int(panels.size()), W = scene.camera.width, H = scene.camera.height;
+    const int cores = cl.opt.threads > 0 ? cl.opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    double needed = 0;
+    for (auto& panel : panels) needed += estimatedBytes(scene, panel->cl.opt, false);
+    if (needed + 200e6 > memoryLimitBytes()) {
+        err << "bdpt: these " << n << " renders need about " << std::setprecision(2) << std::fixed << needed / 1e9
+            << " GB together, more than this process may use: use a smaller --res (nothing rendered)\n";
+        return 1;
+    }
+    const SideBySideLayout layout(n, W, H);
+    auto writeFrame = [&] { return writePNGBytes(sideBySideFrame(panels, ref, layout), layout.canvasW, layout.canvasH, cl.out); };
+    if (cl.liveSeconds > 0) writeFrame();  // at once: a viewer opens it, and never shows an older run's image
+    warnAboutScene(scene, panels[0]->cl.opt, err);
+    std::vector<std::thread> running;
+    for (auto& owned : panels) {
+        SideBySidePanel& panel = *owned;
+        panel.scene = scene;
+        panel.scene.conventions = panel.cl.conventions;
+        if (!panel.cl.exposureGiven) panel.cl.opt.exposure = scene.exposure;
+        panel.cl.opt.quiet = true;
+        panel.cl.opt.threads = std::max(1, cores / n);
+        panel.sum.assign(3 * size_t(W) * H, 0.0);
+        auto start = std::chrono::steady_clock::now();
+        panel.cl.opt.onPass = [&panel, start](int p, const std::vector<Vec3>& pass, long long) {
+            std::lock_guard<std::mutex> hold(panel.lock);
+            for (size_t i = 0; i < pass.size(); ++i)
+                for (int c = 0; c < 3; ++c) panel.sum[3 * i + c] += pass[i][c];
+            panel.passes = p + 1;
+            panel.seconds = secondsSince(start);
+        };
+        running.emplace_back([&panel] {
+            try {
+                panel.result = render(panel.scene, panel.cl.opt);
+            } catch (const std::bad_alloc&) {
+                panel.outOfMemory = true;
+            }
+            std::lock_guard<std::mutex> hold(panel.lock);
+            panel.done = true;
+        });
+    }
+    auto lastFrame = std::chrono::steady_clock::now();
+    for (bool all = false; !all;) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        all = true;
+        for (auto& panel : panels) {
+            std::lock_guard<std::mutex> hold(panel->lock);
+            all = all && panel->done;
+        }
+        if (!all && cl.liveSeconds > 0 && secondsSince(lastFrame) >= cl.liveSeconds) writeFrame(), lastFrame = std::chrono::steady_clock::now();
+    }
+    for (std::thread& t : running) t.join();
+    for (auto& panel : panels)
+        if (panel->outOfMemory) throw std::bad_alloc();
+    if (!writeFrame()) {
+        err << "bdpt: cannot write " << cl.out << "\n";
+        return 1;
+    }
+    const std::string base = replaceExtension(cl.out, "");
+    for (int i = 0; i < n; ++i) {
+        const SideBySidePanel& panel = *panels[i];
+        const std::string pfm = base + "-" + std::to_string(i + 1) + "-" + methodName(panel.cl.opt.method) + ".pfm";
+        if (!writePFM(panel.result.image, pfm)) {
+            err << "bdpt: cannot write " << pfm << "\n";
+            return 1;
+        }
+        if (cl.opt.quiet) continue;
+        char text[160];
+        std::snprintf(text, sizeof text, "%d. %s: %d samples per pixel in %.2f s on %d thread%s, mean %g, ", i + 1, panel.label.c_str(),
+                      panel.result.passes, panel.result.seconds, panel.cl.opt.threads, panel.cl.opt.threads > 1 ? "s" : "",
+                      imageMean(panel.result.image));
+        out << text << raysPerSample(panel.result) << "; wrote " << pfm;
+        if (ref.width > 0) {
+            ErrorMetrics m = compareToReference(panel.result.image, ref);
+            std::snprintf(text, sizeof text, "; rmse %.4g (%.4g without the lamp's pixels), bias %+.2f%%", m.rmse, m.rmseWithoutLamp, 100 * m.bias);
+            out << text;
+        }
+        out << "\n";
+    }
+    if (!cl.opt.quiet) out << "wrote " << cl.out << " (" << layout.canvasW << "x" << layout.canvasH << ")\n";
+    if (gInterrupts.load() > 0) {
+        err << "bdpt: interrupted: wrote the completed samples per pixel of every panel\n";
+        return kExitInterrupted;
+    }
+    return 0;
+}
+
 // What a method adds to the summary line: vcm's radius and light vertices, the chains' b and
 // acceptance, what the clamp removed.
 inline void printMethodSummary(const CommandLine& cl, const Scene& scene, const RenderResult& r, std::ostream& out) {
     char text[256];
     if (cl.opt.method == Method::VCM) {
-        std::snprintf(text, sizeof text, "vcm: radius %g in pass 1, %g in pass %d; %.1f mergeable light vertices per pixel and pass; "
-                      "light subpaths and grid %.1f MB\n", mergeRadius(scene, cl.opt, 0), mergeRadius(scene, cl.opt, r.passes - 1), r.passes,
-                      double(r.mergeableVertices) / (double(r.passes) * r.image.width * r.image.height), r.lightVertexBytes / 1e6);
+        double pixelPasses = double(r.passes) * r.image.width * r.image.height;
+        std::snprintf(text, sizeof text, "vcm: radius %g in pass 1, %g in pass %d; %.1f light vertices per pixel and pass, %.1f of them "
+                      "mergeable; light subpaths and grid %.1f MB (%.0f bytes per light vertex)\n", mergeRadius(scene, cl.opt, 0),
+                      mergeRadius(scene, cl.opt, r.passes - 1), r.passes, r.lightVertices / pixelPasses, r.mergeableVertices / pixelPasses,
+                      r.lightVertexBytes / 1e6, r.lightVertexBytes * double(r.passes) / std::max(1.0, double(r.lightVertices)));
         out << text;
     }
     if (isMetropolis(cl.opt.method)) {
@@ -4809,6 +5103,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     const std::string pfm = replaceExtension(cl.out, ".pfm");
     Image ref;
     if (int status = checkBeforeRendering(cl, scene, pfm, ref, err)) return status;
+    if (!cl.sideBySide.empty()) return runSideBySide(args, cl, scene, ref, out, err);
     if (cl.liveSeconds > 0)  // a first frame at once: a viewer opens it, and never shows an older run's image
         writePNG(Image(scene.camera.width, scene.camera.height), cl.out, 0);
     warnAboutScene(scene, cl.opt, err);
@@ -4820,7 +5115,11 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         cl.opt.onPass = [&](int p, const std::vector<Vec3>& pass, long long nonFinite) {
             passLog.add(p, pass, nonFinite, scene.camera.width, scene.camera.height);
         };
+    if (cl.profile) cl.opt.threads = 1, gCostClock = CostClock(), gCostClock.on = true, gCostClock.last = CostClock::now();
+    double cpu0 = threadCpuSeconds();
     RenderResult r = render(scene, cl.opt);
+    double cpu = threadCpuSeconds() - cpu0;
+    if (cl.profile) gCostClock.switchTo(Cost::Other), gCostClock.on = false;
     if (!cl.logPath.empty()) {
         passLog.log.close();
         if (!passLog.log) { err << "bdpt: cannot write " << cl.logPath << "\n"; return 1; }
@@ -4844,6 +5143,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
         return kExitInterrupted;
     }
     if (!cl.opt.quiet) printMethodSummary(cl, scene, r, out);
+    if (cl.profile) printProfile(gCostClock, cpu, double(r.passes) * r.image.width * r.image.height, out);
     if (!cl.opt.quiet && ref.width > 0) {
         ErrorMetrics m = compareToReference(r.image, ref);
         char text[256];

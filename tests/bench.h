@@ -11,11 +11,7 @@
 #include "bdpt.cpp"
 #endif
 
-inline double threadCpuSeconds() {
-    timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+// threadCpuSeconds(): the renderer's (--profile's clock).
 
 // scenes/NAME.scene at the resolution of its reference scenes/refs/NAME.pfm (make efficiency,
 // make uneven); false, with the reason on stderr, if either cannot be read.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # make bench: our BVH against Embree on the same rays (tests/bench.h), interleaved runs, ratios
-# from one session; then bdpt's cost per sample against nee's, and vcm's pass and memory
-# against bdpt's.
+# from one session; then bdpt's cost per sample against nee's, vcm's pass and memory against
+# bdpt's, and where a sample's time goes in pt, nee, bdpt and vcm (--profile).
 # Two builds of ours: portable (SSE2, 4-wide nodes: build/bench_rays) and build/native/bench_rays
 # (-march=native, 8-wide AVX nodes), the fair match for Embree, which picks its CPU's widest SIMD.
 # Embree's half (build/embree_rays) exists where libembree-dev is installed; without it the
@@ -86,6 +86,33 @@ for scene in ("cornell", "sds-point"):
     print("== cost per pass, vcm / bdpt on scenes/%s.scene (8 passes, CPU s, median of %d): bdpt %.2f, vcm %.2f: %.2fx" % (scene, runs, b, v, v / b))
     for res in ("", "256x256", "1024x1024"):
         text = cpu(["scenes/%s.scene" % scene, "--method", "vcm", "--spp", "1"] + (["--res", res] if res else []))[1]
-        m = re.search(r"([0-9.]+) mergeable light vertices per pixel and pass; light subpaths and grid ([0-9.]+) MB", text)
-        print("   memory of one pass's light subpaths and grid at %s: %s MB (%s mergeable vertices per pixel)" % (res or "the scene's resolution", m.group(2), m.group(1)))
+        m = re.search(r"([0-9.]+) light vertices per pixel and pass, ([0-9.]+) of them mergeable; light subpaths and grid ([0-9.]+) MB \(([0-9]+) bytes", text)
+        print("   memory of one pass's light subpaths and grid at %s: %s MB, %s bytes per light vertex (%s light vertices per pixel, %s mergeable)" %
+              (res or "the scene's resolution", m.group(3), m.group(4), m.group(1), m.group(2)))
+PY
+# Where a sample's time goes: --profile's split (one thread, the time stamp counter), medians of
+# interleaved runs, on cornell at 128x128.
+python3 - "$runs" "$out" <<'PY'
+import statistics, subprocess, sys, re
+runs, out = int(sys.argv[1]), sys.argv[2]
+methods = [("pt", []), ("nee --mis", ["--mis"]), ("bdpt", []), ("vcm", [])]
+parts = ["tracing", "MIS", "merging", "shading and sampling"]
+got = {m: [] for m, _ in methods}
+for i in range(runs):
+    for m, extra in methods:
+        text = subprocess.run(["./bdpt", "scenes/cornell.scene", "--method", m.split()[0], "--spp", "8", "--res", "128x128", "--profile",
+                               "--out", out + "/profile.png"] + extra, capture_output=True, text=True, check=True).stdout
+        rays = float(re.search(r"([0-9.]+) rays per sample", text).group(1))
+        line = re.search(r"profile \(one thread\): ([0-9.e+-]+) us per sample:(.*)", text)
+        split = {p: float(re.search(re.escape(p) + r" ([0-9.e+-]+) \(", line.group(2)).group(1)) for p in parts}
+        got[m].append((float(line.group(1)), rays, split))
+print("== where a sample's time goes on scenes/cornell.scene (128x128, 8 spp, one thread, --profile; microseconds, median of %d)" % runs)
+print("%-10s %6s %9s" % ("method", "rays", "us/sample") + "".join(" %21s" % p for p in parts))
+for m, _ in methods:
+    total = statistics.median(t for t, _, _ in got[m])
+    row = "%-10s %6.2f %9.2f" % (m, got[m][0][1], total)
+    for p in parts:
+        v = statistics.median(s[p] for _, _, s in got[m])
+        row += " %13.2f (%3.0f%%)" % (v, 100 * v / total)
+    print(row)
 PY

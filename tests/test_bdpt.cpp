@@ -157,8 +157,7 @@ static float mergeWeightInPath(const Scene& scene, Heuristic h, double mergeEta,
     vp.mergeEta = mergeEta;
     vp.radius = 1e-4f * (1 + maxComponent(absVec(y[i].sp.p)));
     vp.paths = {Subpath(y)};
-    vp.misVertices.assign(y.begin(), y.end());
-    vp.stored = {storedVertex(y, i, 0, 0)};
+    vp.stored = {{y[i].sp.p, uint32_t(i), y.data()}};
     buildHashGrid(vp.grid, {y[i].sp.p}, vp.radius);
     RenderOptions opt;
     opt.heuristic = h;
@@ -237,10 +236,8 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
             const PathVertex& xi = zMerge[t2 - 1];
             float pdf, pdfReverse;
             if (isBlack(evalBsdf(scene, xi.sp, xi.wo, yMerge[i].wo, Transport::Radiance, pdf, pdfReverse))) continue;
-            VcmPass::Stored record = storedVertex(yMerge, i, 0, 0);
-            std::vector<MisVertex> yMis(yMerge.begin(), yMerge.end());
             float w = mergeWeightInPath(scene, h, mergeEta, yMerge, i, zMerge);
-            float wWalked = mergeWeight(scene, yMerge, yMis.data(), record, zMerge, t2, h, mergeEta, pdf, pdfReverse);
+            float wWalked = mergeWeight(scene, yMerge, i, zMerge, t2, h, mergeEta, pdf, pdfReverse);
             if (w < 0) w = wWalked, ++wc.mergesUnderflowed;  // a glossy lobe's f of 1e-30: nothing to splat
             wc.worstMergeWalk = std::max(wc.worstMergeWalk, double(std::fabs(w - wWalked)));
             density[1000 + i] = subpathDensity(scene, x, 0, i, roulette) * subpathDensity(scene, x, int(x.size()) - 1, i, roulette) * mergeEta;

@@ -302,3 +302,41 @@ TEST_CASE("--live writes a first frame at once, before mlt's bootstrap ends") {
     CHECK(w == 64);
     CHECK(h == 48);
 }
+
+// --side-by-side renders each method as it would alone: at equal samples every panel's PFM is the
+// method's own image bit for bit (the image does not depend on the threads a panel gets), the
+// labelled PNG is projector-sized, and an entry's mistake is named with the entry.
+TEST_CASE("--side-by-side: each panel is the method's own render, the image at least 1280 wide, errors name the entry") {
+    Run r = run({"scenes/cornell-glass.scene", "--res", "48x40", "--spp", "3", "--side-by-side", "nee --mis, ir --clamp 1e-3,bdpt",
+                 "--ref", "build/tmp/fh_sbs_ref.pfm", "--out", "build/tmp/fh_sbs.png"});
+    CHECK(r.status == 2);  // the reference does not exist yet: checked before rendering
+    CHECK(run({"scenes/cornell-glass.scene", "--res", "48x40", "--spp", "64", "--method", "pt", "--quiet", "--out", "build/tmp/fh_sbs_ref.png"})
+              .status == 0);
+    std::rename("build/tmp/fh_sbs_ref.pfm", "build/tmp/fh_sbs_reference.pfm");
+    r = run({"scenes/cornell-glass.scene", "--res", "48x40", "--spp", "3", "--side-by-side", "nee --mis, ir --clamp 1e-3,bdpt",
+             "--ref", "build/tmp/fh_sbs_reference.pfm", "--out", "build/tmp/fh_sbs.png"});
+    REQUIRE(r.status == 0);
+    CHECK(contains(r.out, "2. ir --clamp 1e-3: 3 samples per pixel"));
+    CHECK(contains(r.out, "rmse "));
+    const char* alone[3][2] = {{"nee", "--mis"}, {"ir", "--clamp"}, {"bdpt", nullptr}};
+    for (int i = 0; i < 3; ++i) {
+        std::vector<std::string> args = {"scenes/cornell-glass.scene", "--res", "48x40", "--spp", "3", "--quiet", "--threads", "2",
+                                         "--method", alone[i][0], "--out", "build/tmp/fh_sbs_alone.png"};
+        if (alone[i][1]) args.push_back(alone[i][1]);
+        if (i == 1) args.push_back("1e-3");
+        REQUIRE(run(args).status == 0);
+        CAPTURE(i);
+        CHECK(readFile("build/tmp/fh_sbs-" + std::to_string(i + 1) + "-" + alone[i][0] + ".pfm") == readFile("build/tmp/fh_sbs_alone.pfm"));
+    }
+    int w = 0, h = 0, channels = 0;
+    CHECK(stbi_info("build/tmp/fh_sbs.png", &w, &h, &channels) == 1);
+    CHECK(w >= 1280);
+    CHECK(h >= 600);
+    r = run({"scenes/cornell.scene", "--side-by-side", "pt,nee --clamp 1", "--out", "build/tmp/fh_sbs.png"});
+    CHECK(r.status == 2);
+    CHECK(contains(r.err, "--clamp applies to --method ir, not to --method nee (see --help), in --side-by-side's entry 'nee --clamp 1'"));
+    r = run({"scenes/cornell.scene", "--side-by-side", "pt,nee", "--method", "bdpt", "--out", "build/tmp/fh_sbs.png"});
+    CHECK(r.status == 2);
+    CHECK(contains(r.err, "--method does not go with --side-by-side: name the methods in its list"));
+    CHECK(run({"scenes/cornell.scene", "--side-by-side", "pt", "--out", "build/tmp/fh_sbs.png"}).status == 2);
+}

@@ -116,6 +116,50 @@ TEST_CASE("the failure table: slope of log(rmse) against log(time), last bias, f
     CHECK(out.str().find("| x | nee | -0.50 | +0.1% | 7 | 0 |") != std::string::npos);
     CHECK(out.str().find("| x | ir --clamp 1 | 0.00 | -4.2% | 3 | 2 |") != std::string::npos);
     CHECK(printFailureTable({"build/no-such.csv"}, out, err) == 2);
+    CHECK(err.str().find("warning") == std::string::npos);  // 90 passes in the fit: no warning
+    // A run of 5 passes: its slope and bias are marked and said to be noise.
+    std::ofstream c("build/tmp/short.csv");
+    c << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count\n";
+    for (int p = 1; p <= 5; ++p) c << "x,mmlt,," << p << "," << p << "," << p << "," << 0.3 / p << ",0,1,0.1,7,0\n";
+    c.close();
+    std::ostringstream out2, err2;
+    CHECK(printFailureTable({"build/tmp/short.csv"}, out2, err2) == 0);
+    CHECK(out2.str().find("(few passes)") != std::string::npos);
+    CHECK(err2.str().find("build/tmp/short.csv:0: warning: only 5 passes") != std::string::npos);
+}
+
+// --profile's split: the parts add up to the whole, and each part is where the method spends it:
+// pt has no MIS weights and no merges, bdpt's weights and vcm's merges take a visible share, and a
+// scope that did not hand the clock back (everything after the first ray charged to tracing)
+// would push tracing's share far past what pt's shading leaves it.
+TEST_CASE("--profile splits a sample's time into tracing, MIS, merging and the rest") {
+    auto profile = [](const char* method) {
+        std::ostringstream so, se;
+        REQUIRE(runCommandLine({"scenes/cornell.scene", "--method", method, "--res", "48x48", "--spp", "8", "--profile", "--out",
+                                "build/tmp/profile.png"}, so, se) == 0);
+        std::string text = so.str();
+        size_t at = text.find("profile (one thread): ");
+        REQUIRE(at != std::string::npos);
+        std::map<std::string, double> share;
+        double total = std::atof(text.c_str() + at + 22), sum = 0;
+        for (const char* part : {"tracing", "MIS", "merging", "shading and sampling"}) {
+            size_t p = text.find(std::string(part) + " ", at);
+            REQUIRE(p != std::string::npos);
+            double value = std::atof(text.c_str() + p + std::strlen(part) + 1);
+            share[part] = value / total;
+            sum += value;
+        }
+        CHECK(sum == doctest::Approx(total).epsilon(0.02));
+        return share;
+    };
+    auto pt = profile("pt"), bdpt = profile("bdpt"), vcm = profile("vcm");
+    CHECK(pt["MIS"] == 0);
+    CHECK(pt["merging"] == 0);
+    CHECK(pt["tracing"] > 0.1);
+    CHECK(pt["tracing"] < 0.8);
+    CHECK(bdpt["MIS"] > 0.02);
+    CHECK(bdpt["merging"] == 0);
+    CHECK(vcm["merging"] > 0.05);
 }
 
 // The error of a render against a reference, after each of several pass counts.

@@ -4,6 +4,17 @@
 #include "helpers.h"
 
 // -- The hash grid finds exactly the points within r --------------------------------------
+struct GridRecord {  // what the grid's caller keeps in bucket order: the point and which it is
+    Vec3 p;
+    uint32_t point;
+};
+
+static std::vector<GridRecord> gridRecords(HashGrid& grid, const std::vector<Vec3>& points, float radius) {
+    std::vector<GridRecord> records;
+    for (uint32_t i : buildHashGrid(grid, points, radius)) records.push_back({points[i], i});
+    return records;
+}
+
 // Random points in clusters (many per cell) and spread out (buckets shared by far cells), against
 // the loop over all points; each query must visit each neighbour once.
 TEST_CASE("hash grid: the neighbours of random queries are exactly the brute-force ones") {
@@ -17,11 +28,11 @@ TEST_CASE("hash grid: the neighbours of random queries are exactly the brute-for
                 points.push_back(clustered ? p * 0.3f + Vec3(-1.5f) : (p - Vec3(0.5f)) * 20.0f);
             }
             HashGrid grid;
-            buildHashGrid(grid, points, radius);
+            std::vector<GridRecord> records = gridRecords(grid, points, radius);
             for (int q = 0; q < 300; ++q) {
                 Vec3 c = points[rng.nextUint() % points.size()] + Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * radius;
                 std::vector<uint32_t> got, want;
-                forEachNeighbour(grid, c, [&](uint32_t e) { got.push_back(grid.entries[e]); });
+                forEachNeighbour(grid, records, c, [&](uint32_t e) { got.push_back(records[e].point); });
                 for (uint32_t i = 0; i < points.size(); ++i) {
                     Vec3 d = points[i] - c;
                     if (dot(d, d) <= radius * radius) want.push_back(i);
@@ -41,10 +52,10 @@ TEST_CASE("hash grid: a point on a cell border is found from both sides") {
     // Cells of 0.2: x = 0.2 starts cell 1, x = 0.1999 ends cell 0, both 0.07 from the query.
     std::vector<Vec3> points = {Vec3(0.2f, 0, 0), Vec3(0.1999f, 0, 0), Vec3(0.2f, 0.2f, 0.2f)};
     HashGrid grid;
-    buildHashGrid(grid, points, 0.1f);
+    std::vector<GridRecord> records = gridRecords(grid, points, 0.1f);
     for (float x : {0.13f, 0.27f}) {
         int n = 0;
-        forEachNeighbour(grid, Vec3(x, 0, 0), [&](uint32_t) { ++n; });
+        forEachNeighbour(grid, records, Vec3(x, 0, 0), [&](uint32_t) { ++n; });
         CHECK(n == 2);
     }
 }
