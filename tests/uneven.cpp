@@ -67,23 +67,29 @@ int main(int argc, char** argv) {
         std::printf("| %s | %.0f | %.3f | %.3f | %.1f |\n", methodName(methods[m]), passes[m] / seeds, med, top, top / med);
     }
     // The figure: reference | one grey map per method | mlt / bdpt ratio, each tile enlarged
-    // (pixels repeated) to at least 192 pixels, legible on a page and a projector.
-    const int zoom = std::max(1, (192 + W - 1) / W), tiles = int(methods.size()) + 2, gap = 6;
-    const int canvasW = tiles * W * zoom + (tiles + 1) * gap, canvasH = H * zoom + 2 * gap;
-    std::vector<unsigned char> canvas(3 * size_t(canvasW) * canvasH, 255);
-    auto place = [&](const std::vector<unsigned char>& tile, int index) {
+    // (pixels repeated) so that the row is at least 1280 pixels wide, a projector's, with two lines
+    // of label above each tile: what it is, and its scale (a map is the relative RMSE per region).
+    const int tiles = int(methods.size()) + 2, zoom = std::max(1, (1280 + tiles * W - 1) / (tiles * W));
+    const int scale = std::max(2, W * zoom / 80), gap = 2 * scale, strip = 2 * 7 * scale + gap;
+    const int canvasW = tiles * W * zoom + (tiles + 1) * gap, canvasH = strip + H * zoom + 2 * gap;
+    std::vector<unsigned char> canvas(3 * size_t(canvasW) * canvasH, 40);
+    auto place = [&](const std::vector<unsigned char>& tile, int index, const std::string& name, const std::string& legend) {
         int x0 = gap + index * (W * zoom + gap);
+        drawLabel(canvas, canvasW, canvasH, x0, gap, name, scale);
+        drawLabel(canvas, canvasW, canvasH, x0, gap + 7 * scale, legend, scale);
         for (int y = 0; y < H * zoom; ++y)
             for (int x = 0; x < W * zoom; ++x)
                 for (int c = 0; c < 3; ++c)
-                    canvas[3 * (size_t(gap + y) * canvasW + x0 + x) + c] = tile[3 * (size_t(y / zoom) * W + x / zoom) + c];
+                    canvas[3 * (size_t(strip + gap + y) * canvasW + x0 + x) + c] = tile[3 * (size_t(y / zoom) * W + x / zoom) + c];
     };
-    place(toSRGBBytes(ref, scene.exposure), 0);
+    char white[64];
+    std::snprintf(white, sizeof white, "white: %.3g", largest);  // the relative RMSE drawn white
+    place(toSRGBBytes(ref, scene.exposure), 0, "reference", name);
     for (size_t m = 0; m < methods.size(); ++m) {
         Image map(W, H);
         for (int y = 0; y < H; ++y)
             for (int x = 0; x < W; ++x) map.at(x, y) = Vec3(float(rel[m][region(x, y)] / largest));
-        place(toSRGBBytes(map, 0), int(m) + 1);
+        place(toSRGBBytes(map, 0), int(m) + 1, methodName(methods[m]), white);
     }
     Image ratio(W, H);
     for (int y = 0; y < H; ++y)
@@ -92,7 +98,7 @@ int main(int argc, char** argv) {
             ratio.at(x, y) = Vec3(b > 0 && mlt > 0 ? float(mlt / b) : std::numeric_limits<float>::quiet_NaN());
         }
     Image colours = ratioColours(ratio);
-    place(toSRGBBytes(colours, 0), tiles - 1);
+    place(toSRGBBytes(colours, 0), tiles - 1, "mlt / bdpt", "blue 1/2, red 2");
     std::string png = outDir + "/uneven-" + name + ".png";
     if (!writePNGBytes(canvas, canvasW, canvasH, png)) { std::fprintf(stderr, "uneven: cannot write %s\n", png.c_str()); return 1; }
     std::printf("\nwrote %s: the reference, relative RMSE per region of bdpt, mlt, pssmlt and mmlt (white: %.3f), mlt's over bdpt's\n",
