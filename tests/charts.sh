@@ -56,26 +56,36 @@ splice() {
 clampFor() {  # G is in the scene's units: a clamp that removes a visible share in each
   case $1 in cornell*|indirect|shading-normals) echo 1e-5 ;; furnace) echo 0.1 ;; refraction) echo 0.05 ;; *) echo 0.2 ;; esac
 }
-# One colour per method and one dash pattern per variant, the same in every chart (colour-blind
-# safe: Okabe-Ito): pt black, nee blue, lt sky blue, ir purple, bdpt vermilion, vcm bluish green,
-# the Metropolis methods dark gold (mlt solid, pssmlt dashed, mmlt dotted)
-# (lt was orange, too close to bdpt's vermilion to tell apart).
+# One style per method, the same in every chart, and within any one chart a colour per method
+# (colour-blind safe: Okabe-Ito, and a few darker tones): pt black, nee blue, lt sky blue, ir
+# purple, bdpt vermilion, vcm bluish green, mlt dark gold; a method's variant is dashed where the
+# chart that shows it has no other method of its colour.
 lineStyle() {
   case $1 in
-    pt) echo "lc rgb '#000000' dt 1" ;;          nee) echo "lc rgb '#0072b2' dt 1" ;;
-    nee-mis) echo "lc rgb '#0072b2' dt 2" ;;     lt) echo "lc rgb '#56b4e9' dt 1" ;;
-    ir) echo "lc rgb '#cc79a7' dt 1" ;;          ir-clamp) echo "lc rgb '#cc79a7' dt 2" ;;
-    bdpt-balance) echo "lc rgb '#d55e00' dt 1" ;; bdpt-power) echo "lc rgb '#d55e00' dt 2" ;;
-    bdpt-max) echo "lc rgb '#d55e00' dt 3" ;;    bdpt-uniform) echo "lc rgb '#d55e00' dt 4" ;;
+    pt) echo "lc rgb '#000000' dt 1" ;;          nee) echo "lc rgb '#0072b2' dt 2" ;;
+    nee-mis) echo "lc rgb '#0072b2' dt 1" ;;     lt) echo "lc rgb '#56b4e9' dt 1" ;;
+    ir) echo "lc rgb '#cc79a7' dt 2" ;;          ir-clamp) echo "lc rgb '#cc79a7' dt 1" ;;
+    bdpt-balance) echo "lc rgb '#d55e00' dt 1" ;; bdpt-power) echo "lc rgb '#e69f00' dt 1" ;;
+    bdpt-max) echo "lc rgb '#7f2704' dt 1" ;;    bdpt-uniform) echo "lc rgb '#666666' dt 1" ;;
     vcm) echo "lc rgb '#009e73' dt 1" ;;
-    mlt) echo "lc rgb '#8c6d00' dt 1" ;;         pssmlt) echo "lc rgb '#8c6d00' dt 2" ;;
-    mmlt) echo "lc rgb '#8c6d00' dt 3" ;;
+    mlt) echo "lc rgb '#8c6d00' dt 1" ;;         pssmlt) echo "lc rgb '#56b4e9' dt 2" ;;
+    mmlt) echo "lc rgb '#cc79a7' dt 3" ;;
     *) echo "lc rgb '#999999' dt 1" ;;
   esac
 }
 
-styles() {  # every method's chart style: tests/test_notes.cpp checks that no two are alike
+# Each scene's runs in three charts of at most six curves, each chart a question: which method
+# (error-vs-time-SCENE.png), which variant of bdpt, nee and ir (-variants.png), and Metropolis
+# against bdpt (-metropolis.png).
+chartGroups() {
+  echo "|pt nee-mis lt ir-clamp bdpt-balance vcm"
+  echo "-variants|bdpt-balance bdpt-power bdpt-max bdpt-uniform nee ir"
+  echo "-metropolis|bdpt-balance mlt pssmlt mmlt"
+}
+
+styles() {  # every method's chart style, and the charts' groups: tests/test_notes.cpp checks them
   methods cornell | while IFS='|' read -r label opts; do echo "$label $(lineStyle "$label")"; done
+  chartGroups | while IFS='|' read -r suffix group; do echo "chart$suffix $group"; done
 }
 
 # The fourteen runs of every scene: label|options
@@ -209,11 +219,11 @@ samplerPlot() {
         END { if (n > 2) printf "%.2f", (n * sxy - sx * sy) / (n * sxx - sx * sx); else printf "?" }' "$log")
       colour=$(lineStyle "$label" | sed "s/ dt .*//")
       dash=1; [ $sampler = random ] && dash=2
-      plot="$plot${plot:+, }'$log' using 6:13 with lines lw 2 $colour dt $dash title '${label%-balance} $sampler (slope $slope)'"
+      plot="$plot${plot:+, }'$log' using 6:13 with lines lw 4 $colour dt $dash title '${label%-balance} $sampler (slope $slope)'"
     done
   done < <(samplerMethods)
   gnuplot <<GP
-set terminal pngcairo size 800,560 font "sans,11"
+set terminal pngcairo size 1280,720 font "sans,20"
 set output "$FIG/error-vs-time-samplers-$variant.png"
 set datafile separator ","
 set logscale xy
@@ -265,34 +275,40 @@ plots() {  # the charts again from the runs' logs, without rendering (after a ch
 }
 
 plotScene() {
-  local s=$1 plot="" logs=()
-  while IFS='|' read -r label opts; do
-    # column 13, rmse_without_lamp: the lamp's pixels and their neighbours left out, as make
-    # efficiency does, so that the charts and its table rank the methods on the same pixels
-    plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:13 with lines lw 2 $(lineStyle "$label") title '$label'"
-    logs+=("$LOGS/$s-$label.csv")
-  done < <(methods "$s")
+  local s=$1
   refnoise=$(awk -F, -v s="$s" '$1 == s { print $6 / 2 }' scenes/refs/refs.csv)
-  # an exact reference (the furnace) has no noise to draw on a log scale
-  [ "${refnoise:-0}" = 0 ] || plot="$plot, $refnoise with lines dt 2 lc rgb 'black' title 'reference noise'"
-  # Four decades below the largest error: a run whose error crosses zero (ir's in the furnace)
-  # would otherwise stretch the axis down to 1e-8 and flatten every other curve.
-  ymin=$(awk -F, 'FNR > 1 && $13 != "" && $13 > m { m = $13 } END { e = int(log(m) / log(10) + 10) - 10 - 4; printf "1e%d", e }' "${logs[@]}")
-  gnuplot <<GP
-set terminal pngcairo size 800,560 font "sans,11"
-set output "$FIG/error-vs-time-$s.png"
+  while IFS='|' read -r suffix group; do
+    local plot="" logs=()
+    for label in $group; do
+      # column 13, rmse_without_lamp: the lamp's pixels and their neighbours left out, as make
+      # efficiency does, so that the charts and its table rank the methods on the same pixels
+      plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:13 with lines lw 4 $(lineStyle "$label") title '${label%-balance}'"
+      logs+=("$LOGS/$s-$label.csv")
+    done
+    # an exact reference (the furnace) has no noise to draw on a log scale
+    [ "${refnoise:-0}" = 0 ] || plot="$plot, $refnoise with lines lw 2 dt 2 lc rgb '#333333' title 'reference noise'"
+    # The y range: the curves' own, from the smallest final error (or the reference's noise, if
+    # lower) to the largest error, a little wider: no empty decades below the data.
+    range=$(awk -F, -v noise="${refnoise:-0}" 'FNR > 1 && $13 > 0 { last[FILENAME] = $13; if ($13 > hi) hi = $13 }
+      END { lo = 1e30; for (f in last) if (last[f] < lo) lo = last[f]
+            if (noise > 0 && noise < lo) lo = noise
+            printf "%g:%g", lo / 1.5, hi * 1.5 }' "${logs[@]}")
+    gnuplot <<GP
+set terminal pngcairo size 1280,720 font "sans,20"
+set output "$FIG/error-vs-time-$s$suffix.png"
 set datafile separator ","
 set logscale xy
-set yrange [$ymin:*]
+set yrange [$range]
 set key outside right
 set grid
-set title "$s ($RES): RMSE without the lamp's pixels, equal time ($RUN_SECONDS s a run)"
-set xlabel "seconds (2 threads)"
+set title "$s ($RES): RMSE without the lamp's pixels, $RUN_SECONDS s a run on 2 threads"
+set xlabel "seconds"
 set ylabel "RMSE"
 set format y "%g"
 plot $plot
 GP
-  echo "chart $FIG/error-vs-time-$s.png"
+    echo "chart $FIG/error-vs-time-$s$suffix.png"
+  done < <(chartGroups)
 }
 
 # The failure table and the reference check, from the logs of every scene's runs.

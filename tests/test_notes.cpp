@@ -357,17 +357,40 @@ TEST_CASE("every make target and every figure the notes mention exists") {
     CHECK(images >= 20);
 }
 
-TEST_CASE("every method has its own colour and line style in the charts, the same in every chart") {
+TEST_CASE("every method has its own line style, the same in every chart; a chart has at most six, each its own colour") {
     std::system("bash tests/charts.sh styles > build/tmp/styles.txt");
     std::istringstream in(slurp("build/tmp/styles.txt"));
-    std::set<std::string> styles, labels;
+    std::set<std::string> styles, labels, charted;
+    std::map<std::string, std::string> colourOf;
+    std::vector<std::vector<std::string>> charts;
     for (std::string line; std::getline(in, line);) {
-        labels.insert(line.substr(0, line.find(' ')));
-        styles.insert(line.substr(line.find(' ') + 1));
+        std::string first = line.substr(0, line.find(' ')), rest = line.substr(line.find(' ') + 1);
+        if (first.rfind("chart", 0) == 0) {  // "chart-SUFFIX method method ...": one chart's curves
+            std::istringstream words(rest);
+            charts.emplace_back();
+            for (std::string w; words >> w;) charts.back().push_back(w);
+            continue;
+        }
+        labels.insert(first);
+        styles.insert(rest);
+        colourOf[first] = rest.substr(0, rest.find(" dt"));
         CHECK(line.find("#999999") == std::string::npos);  // the fallback: a method without its own style
     }
     CHECK(labels.size() == 14);
     CHECK(styles.size() == labels.size());
+    CHECK(charts.size() >= 2);
+    for (const std::vector<std::string>& chart : charts) {  // at most six curves, each its own colour
+        CAPTURE(chart.size());
+        CHECK(chart.size() <= 6);
+        std::set<std::string> colours;
+        for (const std::string& method : chart) {
+            CHECK(labels.count(method) == 1);
+            colours.insert(colourOf[method]);
+            charted.insert(method);
+        }
+        CHECK(colours.size() == chart.size());
+    }
+    CHECK(charted == labels);  // every method is in some chart
 }
 
 TEST_CASE("Appendix A quotes the reference check's range of ratios as the generated table has it") {
@@ -476,12 +499,13 @@ TEST_CASE("the slopes and biases the pages quote are the failure table's (make f
                 p16 = flatPage("16-metropolis-sampling.md"), a = flatPage("appendix-a-speed-and-accuracy.md");
     std::vector<std::pair<const std::string*, std::string>> quotes = {
         {&p1, "lt flattens at once (bias " + bias("cornell-glass", "lt")},
-        {&p1, "stays high (bias " + bias("cornell-glass", "ir")},
+        {&p1, "clamped ir stays high (bias " + bias("cornell-glass", "ir --clamp")},
         {&p12, "pt, nee, lt (bias " + bias("sds-point", "pt") + ": black), ir (" + bias("sds-point", "ir") + ") and bdpt (" + bias("sds-point", "bdpt balance")},
         {&p12, "Only vcm falls (slope " + slope("sds-point", "vcm") + ", bias " + bias("sds-point", "vcm") + ")"},
         {&p12, "uniform heuristic has a slope of " + slope("sds-point", "bdpt uniform")},
         {&p14, "(bias " + bias("refraction", "lt") + "): it cannot"},
-        {&p14, "ir levels off too (" + bias("refraction", "ir")},
+        {&p14, "clamped ir levels off too (" + bias("refraction", "ir --clamp")},
+        {&p14, "unclamped ir's " + bias("refraction", "ir")},
         {&a, "bdpt " + bias("sds-point", "bdpt balance") + " and " + bias("sds-ior1", "bdpt balance") + ", slope 0"},
         {&a, "vcm on `sds-point` and `sds-ior1` (slope " + slope("sds-point", "vcm") + " and " + slope("sds-ior1", "vcm") + ", bias " +
                  bias("sds-point", "vcm") + " and " + bias("sds-ior1", "vcm") + ")"},
