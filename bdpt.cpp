@@ -4888,12 +4888,13 @@ struct SideBySidePanel {
 // the image is at least about 1280x720: a projector's size, read from the back of a room.
 struct SideBySideLayout {
     int W, H, cols, rows, zoom, scale, strip, gap, panelW, panelH, canvasW, canvasH;  // W x H: the image's size
-    SideBySideLayout(int n, int width, int height) : W(width), H(height) {
+    // widest: the widest line of text at scale 1 (drawLabel's width), which must fit a panel
+    SideBySideLayout(int n, int width, int height, int widest) : W(width), H(height) {
         cols = n <= 3 ? n : (n + 1) / 2;
         rows = (n + cols - 1) / cols;
         zoom = std::max({1, (1280 + cols * W - 1) / (cols * W), (600 + rows * H - 1) / (rows * H)});
         panelW = W * zoom, panelH = H * zoom;
-        scale = std::max(2, panelW / 100);  // about 24 characters across a panel
+        scale = std::max(1, std::min(std::max(2, panelW / 100), (panelW - 4) / std::max(1, widest)));  // 24 characters, or the widest line
         gap = 2 * scale;
         strip = 3 * 7 * scale + gap;        // three lines of text above each panel
         canvasW = cols * (panelW + gap) + gap, canvasH = rows * (strip + panelH + gap) + gap;
@@ -4977,7 +4978,9 @@ inline int runSideBySide(const std::vector<std::string>& args, CommandLine& cl, 
             << " GB together, more than this process may use: use a smaller --res (nothing rendered)\n";
         return 1;
     }
-    const SideBySideLayout layout(n, W, H);
+    int widest = labelWidth("9999 spp  59.9 s", 1);
+    for (auto& panel : panels) widest = std::max(widest, labelWidth(panel->label, 1));
+    const SideBySideLayout layout(n, W, H, widest);
     auto writeFrame = [&] { return writePNGBytes(sideBySideFrame(panels, ref, layout), layout.canvasW, layout.canvasH, cl.out); };
     if (cl.liveSeconds > 0) writeFrame();  // at once: a viewer opens it, and never shows an older run's image
     warnAboutScene(scene, panels[0]->cl.opt, err);

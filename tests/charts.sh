@@ -531,8 +531,8 @@ notes() {  # every figure of the pages, by the commands they show
     [ -n "$dir" ] && mkdir -p "$dir"
     mkdir -p build/notes
     echo "$cmd"
-    # shellcheck disable=SC2086
-    $cmd --quiet --overwrite  # NOTES=1 only: the pages' figures are the project's
+    eval "$cmd --quiet --overwrite"  # NOTES=1 only: the pages' figures are the project's; eval: quoted lists
+    rm -f "$FIG"/*-[1-8]-*.pfm  # --side-by-side's panels' PFMs: a page shows the labelled PNG
   done
 }
 

@@ -74,10 +74,26 @@ TEST_CASE("the notes cite only functions that bdpt.cpp defines") {
 }
 
 // A shown command, made quick: 1 sample per pixel, 8x8 pixels, files into build/tmp/notes/.
+// A command line's words as the shell splits them: "a b" is one word (--side-by-side's list).
+static std::vector<std::string> shellWords(const std::string& line) {
+    std::vector<std::string> words;
+    std::string w;
+    bool quoted = false, any = false;
+    for (char c : line) {
+        if (c == '"') { quoted = !quoted; any = true; continue; }
+        if (c == ' ' && !quoted) {
+            if (any) words.push_back(w);
+            w.clear(), any = false;
+            continue;
+        }
+        w += c, any = true;
+    }
+    if (any) words.push_back(w);
+    return words;
+}
+
 static std::vector<std::string> quickArgs(const std::string& line) {
-    std::istringstream in(line);
-    std::vector<std::string> words, args;
-    for (std::string w; in >> w;) words.push_back(w);
+    std::vector<std::string> words = shellWords(line), args;
     auto intoBuild = [](const std::string& path) { return "build/tmp/notes/" + path.substr(path.find_last_of('/') + 1); };
     for (size_t i = 1; i < words.size(); ++i) {
         const std::string& w = words[i];
@@ -144,9 +160,7 @@ TEST_CASE("the commands the notes show write into build/, never over the committ
         std::istringstream in(slurp(page));
         for (std::string line; std::getline(in, line);) {
             if (line.rfind("./bdpt ", 0) != 0) continue;
-            std::istringstream words(line);
-            std::vector<std::string> w;
-            for (std::string x; words >> x;) w.push_back(x);
+            std::vector<std::string> w = shellWords(line);
             for (size_t i = 0; i + 1 < w.size(); ++i)
                 if (w[i] == "--out" || w[i] == "--strategies") {
                     CAPTURE(page);
