@@ -397,6 +397,7 @@ panels() {
 
 figures() {
   sixPanels 40 time
+  [ -n "$NOTES" ] && python3 tests/diagrams.py  # the pages' path diagrams (figures/path-*.svg)
   thingap
   sds
   estimators

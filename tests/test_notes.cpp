@@ -349,6 +349,27 @@ TEST_CASE("notes, pages 4 and 9: the furnace's partial sums, and roulette's q = 
     CHECK(double(survived) / trials == doctest::Approx(0.8).epsilon(0.02));
 }
 
+// The pages that speak of vertices and strategies show a path with its vertices labelled as the
+// slides label them (tests/diagrams.py draws them): bdpt's idea, the densities, the path
+// formulation, the combination of strategies, merging and Metropolis.
+TEST_CASE("the pages on paths and strategies each show a path diagram") {
+    int pages = 0;
+    for (const char* page : {"03-bidirectional-path-tracing.md", "07-probabilities.md", "08-path-formulation.md",
+                             "10-combining-estimators.md", "15-vertex-merging.md", "16-metropolis-sampling.md"}) {
+        std::smatch m;
+        std::string text = flatPage(page);
+        CAPTURE(page);
+        REQUIRE(std::regex_search(text, m, std::regex("\\(figures/(path-[a-z-]+\\.svg)\\)")));
+        std::string svg = slurp("lecture_notes/figures/" + m[1].str());
+        CHECK(svg.rfind("<svg", 0) == 0);
+        int vertices = 0;
+        for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++vertices;
+        CHECK(vertices >= 4);  // a path: its vertices drawn, each labelled
+        pages += svg.find("<title>") != std::string::npos && svg.find("</svg>") != std::string::npos;
+    }
+    CHECK(pages >= 6);
+}
+
 TEST_CASE("every make target and every figure the notes mention exists") {
     std::string makefile = slurp("Makefile");
     std::regex target("`make ([a-z-]+)`"), image("\\]\\((figures/[^)]+)\\)");
