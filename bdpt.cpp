@@ -1805,7 +1805,7 @@ inline Vec3 sampleIR(const Scene& scene, const RenderOptions& opt, const PassDat
 // pbrt stores the density after a delta event as an area density of 1 (--delta-density-one
 // restores it), which drops the |cos|/d^2 at the vertex after it: for a caustic on a floor
 // millimetres below a glass ball that 1/d^2 is huge, and pbrt's convention hands the caustic to
-// the noisy s = 0 instead of light tracing (notes, page 7; tests `specular chains` and `a caustic
+// the noisy s = 0 instead of light tracing (notes, page 10M; tests `specular chains` and `a caustic
 // seen directly`). The walk is in double: near corners, with sharp lobes, one density can be
 // 1e-31 and another 1e+8, beyond float's range.
 // Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues
@@ -4760,7 +4760,8 @@ inline int runImageTool(const CommandLine& cl, std::ostream& out, std::ostream& 
     if (cl.ratio) return writeRatio(a, b, cl.out, out, err);
     if (!cl.average) {
         ErrorMetrics m = compareToReference(a, b);
-        out << "rmse " << m.rmse << " relmse " << m.relMse << " bias " << m.bias << " mean " << m.mean << "\n";
+        out << "rmse " << m.rmse << " relmse " << m.relMse << " bias " << m.bias << " mean " << m.mean << " rmse_without_lamp "
+            << m.rmseWithoutLamp << "\n";
         return 0;
     }
     for (size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = (a.pixels[i] + b.pixels[i]) * 0.5f;

@@ -213,7 +213,42 @@ def mutation():  # page 16: a small step and a large step in primary sample spac
     svg.save("path-mutation.svg")
 
 
+def mirror():  # page 10M: a mirror unfolded, and one interface
+    svg = Svg(860, 360, "Through a mirror and through one interface")
+    # Left: a -> m on the mirror -> b, and b's mirror image b' on the straight line from a.
+    svg.wall((60, 230), (400, 230))
+    a, m, b, bb = (90, 100), (248, 230), (370, 130), (370, 330)  # m on the line a - b'
+    svg.line(a, towards(a, m), LIGHT, arrow=True)
+    svg.line(m, towards(m, b), LIGHT, arrow=True)
+    svg.line(m, bb, GREY, 2, dash="6,5")
+    svg.dot(a, LIGHT)
+    svg.dot(m, INK, 5)
+    svg.dot(b, LIGHT)
+    svg.ring(bb, 7, GREY, dash="3,2")
+    svg.text((90, 85), "a", LIGHT)
+    svg.text((150, 250), "mirror", INK, size=15)
+    svg.text((385, 125), "b", LIGHT, anchor="start")
+    svg.text((385, 335), "b' (b unfolded)", GREY, anchor="start", size=15)
+    svg.text((230, 28), "a mirror: b lies where the straight line reaches b'", INK, size=16)
+    svg.text((230, 50), "density at b: p_omega(a) |cos_b| / (d1 + d2)^2", INK, size=15)
+    # Right: one interface, air above, water below.
+    svg.items.append('<rect x="470" y="200" width="360" height="130" fill="#dcebf7"/>')
+    svg.wall((470, 200), (830, 200))
+    a2, x, b2 = (540, 100), (650, 200), (720, 300)
+    svg.line(a2, towards(a2, x), LIGHT, arrow=True)
+    svg.line(x, towards(x, b2), LIGHT, arrow=True)
+    svg.dot(a2, LIGHT)
+    svg.dot(x, INK, 5)
+    svg.dot(b2, LIGHT)
+    svg.text((555, 95), "a (air, eta_a = 1)", LIGHT, anchor="start")
+    svg.text((705, 325), "b (water, eta_b = 1.33)", LIGHT, anchor="end", size=14)
+    svg.text((790, 190), "surface", INK, size=14)
+    svg.text((650, 28), "one interface keeps eta^2 |cos| d omega:", INK, size=16)
+    svg.text((650, 50), "the ends differ by eta_b^2 / eta_a^2 = 1.77", INK, size=15)
+    svg.save("path-mirror.svg")
+
+
 if __name__ == "__main__":
-    for draw in (bdpt, densities, formulation, strategies, merge, mutation):
+    for draw in (bdpt, densities, formulation, strategies, merge, mutation, mirror):
         draw()
-    print("wrote lecture_notes/figures/path-{bdpt,densities,formulation,strategies,merge,mutation}.svg")
+    print("wrote lecture_notes/figures/path-{bdpt,densities,formulation,strategies,merge,mutation,mirror}.svg")
