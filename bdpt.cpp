@@ -2108,7 +2108,7 @@ inline void forEachNeighbour(const HashGrid& g, const std::vector<Record>& recor
 // The pass's light subpaths: pixel p's is paths[p], its vertices stored row by row (the
 // connections need them whole). A merge reads its light vertex and the ones before it there, as
 // a connection reads its own pixel's: the grid adds only where each mergeable vertex lies and
-// which it is (16 bytes in all), not a second copy of what the vertices already hold.
+// which it is (24 bytes), not a second copy of what the vertices already hold.
 struct VcmPass {
     float radius = 0;
     double mergeEta = 0;                  // pi r^2 N_light; 0: no merging (vcm is bdpt)
@@ -4321,7 +4321,7 @@ inline const std::vector<OptionSpec> kOptions = {
     {"--profile", "", {}, "",
      "render on one thread and print the time per sample split into tracing,\n"
      "MIS weights, merging (vcm) and the rest (shading, sampling, camera, film),\n"
-     "from the CPU's time stamp counter; the clock adds about a tenth",
+     "from the CPU's time stamp counter; the clock adds a few per cent",
      [](CL& cl, A&) { cl.profile = true; }},
     {nullptr, "", {}, "", "Output", nullptr},
     {"--out", "FILE.png", {}, "", "PNG file (default render.png); the PFM goes to FILE.pfm", [](CL& cl, A& a) { cl.out = a.value(); }},
