@@ -4423,8 +4423,9 @@ inline void checkCombinations(CommandLine& cl) {
     if ((cl.average || cl.ratio) && !given("--out"))
         ArgReader::fail(std::string(cl.average ? "--average" : "--ratio") + " writes an image: name it with --out FILE.png");
     if (!cl.pfmA.empty()) return;
-    for (const OptionSpec& o : kOptions)
-        if (o.name && given(o.name) && !o.methods.empty() && std::find(o.methods.begin(), o.methods.end(), cl.opt.method) == o.methods.end())
+    for (const OptionSpec& o : kOptions)  // (side by side, each entry's own line is checked with its method)
+        if (o.name && given(o.name) && !o.methods.empty() && cl.sideBySide.empty() &&
+            std::find(o.methods.begin(), o.methods.end(), cl.opt.method) == o.methods.end())
             ArgReader::fail(std::string(o.name) + " applies to " + o.whose + ", not to --method " + methodName(cl.opt.method));
     if (given("--strategy-length") && cl.strategiesDir.empty()) ArgReader::fail("--strategy-length applies with --strategies DIR");
     // Only the throughput rule has a start: the albedo rule acts from the first bounce on.
@@ -4952,7 +4953,8 @@ inline std::vector<std::unique_ptr<SideBySidePanel>> sideBySidePanels(const std:
         try {
             panel->cl = parseCommandLine(line);
         } catch (const InputError& e) {
-            throw InputError(std::string(e.what()) + ", in --side-by-side's entry '" + printable(entry) + "'");
+            throw InputError(std::string(e.what()) + ", in --side-by-side's entry '" + printable(entry) +
+                             "' (an option of some methods only goes in their entries)");
         }
         std::stringstream label(entry);
         for (std::string w; label >> w;) panel->label += (panel->label.empty() ? "" : " ") + w;

@@ -301,6 +301,13 @@ TEST_CASE("--live writes a first frame at once, before mlt's bootstrap ends") {
     CHECK(stbi_info("build/tmp/fh_first.png", &w, &h, &channels) == 1);
     CHECK(w == 64);
     CHECK(h == 48);
+    // Side by side too: the labelled frame of every panel at once, mlt's saying it is starting.
+    writeTempFile("fh_first_sbs.png", "an older run's image");
+    auto [status2, text2] = shellRun("timeout -s KILL 2 ./bdpt scenes/door.scene --side-by-side \"bdpt,mlt --bootstrap 10000000\" "
+                                     "--res 64x48 --time 60 --live 1 --out build/tmp/fh_first_sbs.png");
+    CHECK(status2 != 0);
+    CHECK(stbi_info("build/tmp/fh_first_sbs.png", &w, &h, &channels) == 1);
+    CHECK(w >= 1280);
 }
 
 // --side-by-side renders each method as it would alone: at equal samples every panel's PFM is the
@@ -335,6 +342,9 @@ TEST_CASE("--side-by-side: each panel is the method's own render, the image at l
     r = run({"scenes/cornell.scene", "--side-by-side", "pt,nee --clamp 1", "--out", "build/tmp/fh_sbs.png"});
     CHECK(r.status == 2);
     CHECK(contains(r.err, "--clamp applies to --method ir, not to --method nee (see --help), in --side-by-side's entry 'nee --clamp 1'"));
+    r = run({"scenes/cornell.scene", "--side-by-side", "pt,ir", "--clamp", "1", "--out", "build/tmp/fh_sbs.png"});  // shared, but ir's only
+    CHECK(r.status == 2);
+    CHECK(contains(r.err, "in --side-by-side's entry 'pt' (an option of some methods only goes in their entries)"));
     r = run({"scenes/cornell.scene", "--side-by-side", "pt,nee", "--method", "bdpt", "--out", "build/tmp/fh_sbs.png"});
     CHECK(r.status == 2);
     CHECK(contains(r.err, "--method does not go with --side-by-side: name the methods in its list"));
