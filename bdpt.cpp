@@ -4944,20 +4944,21 @@ inline std::vector<std::unique_ptr<SideBySidePanel>> sideBySidePanels(const std:
     }
     std::vector<std::unique_ptr<SideBySidePanel>> panels;
     for (const std::string& entry : cl.sideBySide) {
+        auto panel = std::make_unique<SideBySidePanel>();
         std::vector<std::string> line = {cl.scenePath, "--method"};
         std::stringstream words(entry);
-        for (std::string w; words >> w;) line.push_back(w);
+        for (std::string w; words >> w;) {
+            line.push_back(w);
+            panel->label += (panel->label.empty() ? "" : " ") + w;
+        }
         if (line.size() == 2) ArgReader::fail("--side-by-side has an empty entry (two commas, or one at an end)");
         line.insert(line.end(), shared.begin(), shared.end());
-        auto panel = std::make_unique<SideBySidePanel>();
         try {
             panel->cl = parseCommandLine(line);
         } catch (const InputError& e) {
             throw InputError(std::string(e.what()) + ", in --side-by-side's entry '" + printable(entry) +
                              "' (an option of some methods only goes in their entries)");
         }
-        std::stringstream label(entry);
-        for (std::string w; label >> w;) panel->label += (panel->label.empty() ? "" : " ") + w;
         panels.push_back(std::move(panel));
     }
     return panels;

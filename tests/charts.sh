@@ -318,18 +318,9 @@ GP
 tables() {
   local logs=()
   for s in $SCENES; do while IFS='|' read -r label opts; do logs+=("$LOGS/$s-$label.csv"); done < <(methods "$s"); done
+  # bdpt --failure-table marks a run of too few passes "(few passes)" and warns of it
   ./bdpt --failure-table "${logs[@]}" > "$FIG/failure-table.md"
   echo "failure table: $FIG/failure-table.md"
-  # A slope fitted to a handful of passes is noise (a busy machine finishes fewer): say which.
-  local few=0
-  for log in "${logs[@]}"; do
-    passes=$(( $(wc -l < "$log") - 1 ))
-    if [ "$passes" -lt 8 ]; then
-      echo "warning: $log has only $passes passes: its slope and bias in the table mean little (FULL=1 runs 4 s each)" >&2
-      few=$((few + 1))
-    fi
-  done
-  [ "$few" -eq 0 ] || echo "warning: $few of ${#logs[@]} runs finished fewer than 8 passes; read their rows as noise" >&2
   splice "$FIG/failure-table.md" "$RECORD" failure-table
   refcheck
 }
@@ -350,7 +341,7 @@ refcheck() {
       # the smallest final RMSE of this scene's runs on the charts' pixels (without the lamp's), and which method made it
       best=$(methods "$s" | while IFS='|' read -r label opts; do echo "$(tail -1 "$LOGS/$s-$label.csv" | cut -d, -f13) $label"; done |
         sort -g | head -1)
-      awk -F, -v s="$s" -v best="$best" '$1 == s { split(best, b, " "); n = ($8 != "" ? $8 : $6) / 2; mark = ($8 != "" ? "" : " (all pixels)")
+      awk -F, -v s="$s" -v best="$best" -v n="$(refNoise "$s")" '$1 == s { split(best, b, " "); mark = ($8 != "" ? "" : " (all pixels)")
         if ($2 == "analytic") printf "| %s | analytic | - | 0 | %.4f (%s) | exact |\n", s, b[1], b[2]
         else printf "| %s | %s, 2 x %d s | %d + %d | %.5f%s | %.4f (%s) | %.1f |\n", s, $2, $3, $4, $5, n, mark, b[1], b[2], b[1] / n }' scenes/refs/refs.csv
     done

@@ -62,29 +62,23 @@ mistake refraction scenes/refraction.scene lt 64 --symmetric-refraction "light t
 mistake shading-normals scenes/shading-normals.scene lt 64 --no-adjoint-correction "light tracing with shading normals"
 mistake ray-offset tests/thin-gap.scene lt 64 --fixed-ray-offset "a lamp 0.5 mm above the floor"
 
-# One colour per method, as in make charts (Okabe-Ito: colour-blind safe).
-colour() {
-  case $1 in
-    pt) echo "#000000" ;; nee*) echo "#0072b2" ;; lt) echo "#56b4e9" ;; ir*) echo "#cc79a7" ;; bdpt) echo "#d55e00" ;;
-    vcm) echo "#009e73" ;; mlt) echo "#8c6d00" ;; *) echo "#e69f00" ;;
-  esac
-}
 # Error against time: each method for the same time on one thread, the RMSE of every pass against
-# the scene's reference; two runs at a time.
-chart() {  # scene title methods (label|options ...)
+# the scene's reference; two runs at a time. The methods are make charts' (their options and
+# their chart styles, one colour each, from tests/charts.sh).
+chart() {  # scene title label...   (labels as tests/charts.sh methods names them)
   local scene=$1 title=$2 plot="" i=0
   shift 2
-  for entry in "$@"; do
-    local label=${entry%%|*} opts=${entry#*|}
+  for label in "$@"; do
+    local opts
+    opts=$(tests/charts.sh methods "$scene" | sed -n "s/^$label|//p")
     # shellcheck disable=SC2086
     ./bdpt "scenes/$scene.scene" $opts --res 64x64 --time "$((T / 4))" --threads 1 --quiet --ref "scenes/refs/$scene.pfm" \
       --log "$OUT/work/$scene-$label.csv" --out "$OUT/work/$scene-$label.png" &
     (( ++i % 2 == 0 )) && wait
   done
   wait
-  for entry in "$@"; do
-    local label=${entry%%|*}
-    plot="$plot${plot:+, }'$OUT/work/$scene-$label.csv' using 6:13 with lines lw 4 lc rgb '$(colour "$label")' title '$label'"
+  for label in "$@"; do
+    plot="$plot${plot:+, }'$OUT/work/$scene-$label.csv' using 6:13 with lines lw 4 $(tests/charts.sh lineStyle "$label") title '${label%-balance}'"
   done
   gnuplot <<GP
 set terminal pngcairo size 1280,720 font "sans,22"
@@ -104,11 +98,9 @@ GP
   echo "    $OUT/error-vs-time-$scene.png"
 }
 step "error against time ($((T / 4)) s a run, two at a time)"
-chart cornell-glass "cornell-glass: a mirror and a glass ball" "pt|--method pt" "nee --mis|--method nee --mis" "lt|--method lt" \
-  "ir clamped|--method ir --clamp 1e-5" "bdpt|--method bdpt" "vcm|--method vcm"
-chart sds-point "sds-point: light only along L S D S E" "pt|--method pt" "nee --mis|--method nee --mis" "bdpt|--method bdpt" "vcm|--method vcm"
-chart door "door: the light comes through a gap" "pt|--method pt" "lt|--method lt" "bdpt|--method bdpt" "vcm|--method vcm" \
-  "mlt|--method mlt" "mmlt|--method mmlt"
+chart cornell-glass "cornell-glass: a mirror and a glass ball" pt nee-mis lt ir-clamp bdpt-balance vcm
+chart sds-point "sds-point: light only along L S D S E" pt nee-mis bdpt-balance vcm
+chart door "door: the light comes through a gap" pt lt bdpt-balance vcm mlt mmlt
 
 rm -rf "$OUT/work" "$OUT"/*.pfm  # the panels' PFMs: the figures are the PNGs
 step "done: $(ls "$OUT" | wc -l) figures in $OUT/"
