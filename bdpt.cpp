@@ -4355,7 +4355,8 @@ inline const std::vector<OptionSpec> kOptions = {
      "each the same T seconds (equal time) and --spp N the same samples. Each\n"
      "panel shows its samples, seconds and, with --ref, its RMSE; enlarged to at\n"
      "least 1280 pixels wide; with --live a first frame at once. Each method's\n"
-     "PFM goes beside the PNG (FILE-1-pt.pfm, ...)",
+     "PFM goes beside the PNG (FILE-1-pt.pfm, ...). An entry may name its own\n"
+     "scene (\"bdpt,bdpt scenes/sds-point.scene\"): one method on two scenes",
      [](CL& cl, A& a) {
          std::stringstream list(a.value());
          for (std::string entry; std::getline(list, entry, ',');) cl.sideBySide.push_back(entry);
@@ -4384,7 +4385,9 @@ inline const std::vector<OptionSpec> kOptions = {
     {"--ratio", "A.pfm B.pfm", {}, "",
      "write A/B over 4x4-pixel blocks to --out (required) in false colour\n"
      "(white: equal, red: A brighter, blue: A darker, full colour at one stop; the\n"
-     "PFM holds the ratios) and print its percentiles: where two methods differ",
+     "PFM holds the ratios), enlarged to at least 560 pixels under the files' names,\n"
+     "the ratio of the means and the colour key; print its percentiles: where two\n"
+     "methods differ",
      [](CL& cl, A& a) { cl.ratio = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
     {"--failure-table", "LOG.csv...", {}, "",
      "print the failure table (markdown, as Appendix A of the notes has it) from\n"
@@ -4547,9 +4550,43 @@ inline int printFailureTable(const std::vector<std::string>& logs, std::ostream&
     return 0;
 }
 
-// --ratio: A/B over 4x4 blocks as a false-colour PNG and a PFM of the ratios (0 where undefined),
-// and its percentiles on out. Returns the exit status.
-inline int writeRatio(const Image& a, const Image& b, const std::string& png, std::ostream& out, std::ostream& err) {
+// --ratio's PNG: the false-colour ratio enlarged to at least 560 pixels across (two side by side
+// fill a slide), under a strip that names the division, gives the ratio of the means and draws the
+// colour key from 1/2 (blue) through 1 (white) to 2 (red).
+inline std::vector<unsigned char> ratioFigure(const Image& ratio, const std::string& title, const std::string& means, int& figureW, int& figureH) {
+    const int zoom = std::max(1, (560 + ratio.width - 1) / ratio.width), W = ratio.width * zoom;
+    const int scale = std::max(1, std::min(std::max(2, W / 100), (W - 4) / std::max({1, labelWidth(title, 1), labelWidth(means, 1)})));
+    const int gap = 2 * scale, line = 7 * scale, barH = 3 * scale, strip = 2 * line + barH + line + gap;
+    figureW = W + 2 * gap, figureH = strip + ratio.height * zoom + 2 * gap;
+    std::vector<unsigned char> canvas(size_t(figureW) * figureH * 3, 24);
+    std::vector<unsigned char> rgb = toSRGBBytes(ratioColours(ratio), 0);
+    auto put = [&](int x, int y, const unsigned char* c) { std::copy_n(c, 3, &canvas[3 * (size_t(y) * figureW + x)]); };
+    for (int y = 0; y < ratio.height * zoom; ++y)
+        for (int x = 0; x < W; ++x) put(gap + x, gap + strip + y, &rgb[3 * (size_t(y / zoom) * ratio.width + x / zoom)]);
+    Image key(W, 1);
+    for (int x = 0; x < W; ++x) key.pixels[x] = Vec3(std::exp2(2.0f * (x + 0.5f) / W - 1));  // log2 from -1 to 1
+    std::vector<unsigned char> keyRGB = toSRGBBytes(ratioColours(key), 0);
+    for (int y = 0; y < barH; ++y)
+        for (int x = 0; x < W; ++x) put(gap + x, gap + 2 * line + y, &keyRGB[3 * size_t(x)]);
+    drawLabel(canvas, figureW, figureH, gap, gap, title, scale);
+    drawLabel(canvas, figureW, figureH, gap, gap + line, means, scale);
+    const int keyY = gap + 2 * line + barH + scale;
+    drawLabel(canvas, figureW, figureH, gap, keyY, "1/2", scale);
+    drawLabel(canvas, figureW, figureH, gap + W / 2 - labelWidth("1", scale) / 2, keyY, "1", scale);
+    drawLabel(canvas, figureW, figureH, gap + W - labelWidth("2", scale), keyY, "2", scale);
+    return canvas;
+}
+
+inline std::string fileStem(const std::string& path) {  // "build/notes/pool-lt.pfm" -> "pool-lt"
+    std::string name = replaceExtension(path, "");
+    size_t slash = name.find_last_of('/');
+    return slash == std::string::npos ? name : name.substr(slash + 1);
+}
+
+// --ratio: A/B over 4x4 blocks as a labelled false-colour PNG and a PFM of the ratios (0 where
+// undefined), and its percentiles on out. Returns the exit status.
+inline int writeRatio(const Image& a, const Image& b, const std::string& nameA, const std::string& nameB, const std::string& png,
+                      std::ostream& out, std::ostream& err) {
     Image r = blockRatio(a, b, 4);
     std::vector<float> q;
     for (const Vec3& p : r.pixels)
@@ -4565,9 +4602,12 @@ inline int writeRatio(const Image& a, const Image& b, const std::string& png, st
         << pct(0.5) << ", 95% " << pct(0.95) << "; " << 100.0 * off / std::max<size_t>(1, q.size())
         << "% of the blocks more than half a stop apart\n";
     std::string pfm = replaceExtension(png, ".pfm");
-    Image colours = ratioColours(r);
+    char means[64];
+    std::snprintf(means, sizeof means, "ratio of means %.3f", imageMean(a) / imageMean(b));
+    int figureW, figureH;
+    std::vector<unsigned char> figure = ratioFigure(r, fileStem(nameA) + " / " + fileStem(nameB), means, figureW, figureH);
     for (Vec3& p : r.pixels) p = std::isfinite(p.x) ? p : Vec3(0);
-    if (writePNG(colours, png, 0) && writePFM(r, pfm)) {
+    if (writePNGBytes(figure, figureW, figureH, png) && writePFM(r, pfm)) {
         out << "wrote " << png << " and " << pfm << "\n";
         return 0;
     }
@@ -4758,7 +4798,7 @@ inline int runImageTool(const CommandLine& cl, std::ostream& out, std::ostream& 
             << "x" << b.height << "\n";
         return 2;
     }
-    if (cl.ratio) return writeRatio(a, b, cl.out, out, err);
+    if (cl.ratio) return writeRatio(a, b, cl.pfmA, cl.pfmB, cl.out, out, err);
     if (!cl.average) {
         ErrorMetrics m = compareToReference(a, b);
         out << "rmse " << m.rmse << " relmse " << m.relMse << " bias " << m.bias << " mean " << m.mean << " rmse_without_lamp "
@@ -4948,7 +4988,8 @@ inline std::vector<std::unique_ptr<SideBySidePanel>> sideBySidePanels(const std:
         std::vector<std::string> line = {cl.scenePath, "--method"};
         std::stringstream words(entry);
         for (std::string w; words >> w;) {
-            line.push_back(w);
+            if (hasExtension(w, "scene") && line.back().rfind("--", 0) != 0) line[0] = w;  // the entry's own scene
+            else line.push_back(w);
             panel->label += (panel->label.empty() ? "" : " ") + w;
         }
         if (line.size() == 2) ArgReader::fail("--side-by-side has an empty entry (two commas, or one at an end)");
@@ -4974,9 +5015,30 @@ inline int runSideBySide(const std::vector<std::string>& args, CommandLine& cl, 
         return 2;
     }
     const int n = int(panels.size()), W = scene.camera.width, H = scene.camera.height;
+    for (auto& panel : panels) {
+        panel->scene = scene;
+        if (panel->cl.scenePath == cl.scenePath) continue;
+        try {
+            panel->scene = loadScene(panel->cl.scenePath);
+        } catch (const InputError& e) {
+            err << e.what() << ", in --side-by-side's entry '" << printable(panel->label) << "'\n";
+            return 2;
+        }
+        if (cl.width > 0) setResolution(panel->scene.camera, cl.width, cl.height);
+        if (ref.width > 0) {
+            err << "bdpt: --ref is one scene's reference: leave it out when an entry names its own scene (nothing rendered)\n";
+            return 2;
+        }
+        if (panel->scene.camera.width != W || panel->scene.camera.height != H) {
+            err << "bdpt: the scenes' images differ in size (" << cl.scenePath << " " << W << "x" << H << ", " << panel->cl.scenePath
+                << " " << panel->scene.camera.width << "x" << panel->scene.camera.height
+                << "): give them one with --res WxH (nothing rendered)\n";
+            return 2;
+        }
+    }
     const int cores = cl.opt.threads > 0 ? cl.opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     double needed = 0;
-    for (auto& panel : panels) needed += estimatedBytes(scene, panel->cl.opt, false);
+    for (auto& panel : panels) needed += estimatedBytes(panel->scene, panel->cl.opt, false);
     if (needed + 200e6 > memoryLimitBytes()) {
         err << "bdpt: these " << n << " renders need about " << std::setprecision(2) << std::fixed << needed / 1e9
             << " GB together, more than this process may use: use a smaller --res (nothing rendered)\n";
@@ -4991,9 +5053,8 @@ inline int runSideBySide(const std::vector<std::string>& args, CommandLine& cl, 
     std::vector<std::thread> running;
     for (auto& owned : panels) {
         SideBySidePanel& panel = *owned;
-        panel.scene = scene;
         panel.scene.conventions = panel.cl.conventions;
-        if (!panel.cl.exposureGiven) panel.cl.opt.exposure = scene.exposure;
+        if (!panel.cl.exposureGiven) panel.cl.opt.exposure = panel.scene.exposure;
         panel.cl.opt.quiet = true;
         panel.cl.opt.threads = std::max(1, cores / n);
         panel.sum.assign(3 * size_t(W) * H, 0.0);

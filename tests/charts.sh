@@ -7,9 +7,8 @@
 #   tests/charts.sh metropolisTable  make metropolis: the Markov chains against bdpt over 8 seeds
 #   tests/charts.sh panels    the six panels at 40 paths per pixel into build/panels/ (make panels)
 #   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time,
-#                             the thin-gap figure, sds-point by pt, bdpt and vcm (sds-vcm.png), the
-#                             combination-of-estimators example, the furnace's series and the door's
-#                             uneven convergence (metropolis)
+#                             the thin-gap figure, the combination-of-estimators example, the
+#                             furnace's series and the door's uneven convergence (metropolis)
 #   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
 #   tests/charts.sh plots     the charts again from the logs of the last charts run (no rendering)
 #   tests/charts.sh tables    the failure table and the reference check from the runs' logs
@@ -38,7 +37,7 @@ mkdir -p "$FIG" "$LOGS/refs" scenes/refs
 
 # gnuplot draws every chart and figure: missing, say so before any work (Debian: gnuplot-nox).
 case "${1:-charts}" in
-  charts|panels|figures|plots|notes|estimators|furnaceseries|sds|thingap|samplers)
+  charts|panels|figures|plots|notes|estimators|furnaceseries|thingap|samplers)
     command -v gnuplot >/dev/null || { echo "tests/charts.sh ${1:-charts}: needs gnuplot, which is not installed (apt-get install gnuplot-nox); nothing done" >&2; exit 1; } ;;
 esac
 
@@ -399,7 +398,6 @@ figures() {
   sixPanels 40 time
   [ -n "$NOTES" ] && python3 tests/diagrams.py  # the pages' path diagrams (figures/path-*.svg)
   thingap
-  sds
   estimators
   furnaceseries
   metropolis
@@ -473,29 +471,6 @@ furnaceseries() {
   echo "figure $FIG/furnace-series.png"
 }
 
-# The companion of the six panels, for the slides' "VCM, later": sds-point, whose light reaches
-# the camera only through glass, by pt, bdpt and vcm for the same time.
-sds() {
-  local panels="pt|pt: black (a point light cannot be hit)|--method pt
-bdpt|bdpt: only paths with two or more diffuse vertices|--method bdpt
-vcm|vcm: merges make L S D S E|--method vcm" secs=20
-  mkdir -p "$LOGS/fig"
-  {
-    echo 'set terminal pngcairo size 1200,330 font "sans,11"'
-    echo "set output '$FIG/sds-vcm.png'"
-    echo "set multiplot layout 1,3 title 'scenes/sds-point.scene (a point light in a glass ball, the camera in another), $secs s each, exposure -1' font ',12'"
-    echo 'unset border; unset tics; unset key; set size ratio -1; set lmargin 0; set rmargin 0; set tmargin 3; set bmargin 0'
-    while IFS='|' read -r name title opts; do
-      # shellcheck disable=SC2086
-      mean=$(./bdpt scenes/sds-point.scene $opts --time $secs --exposure -1 --out "$LOGS/fig/sds-$name.png" | sed -n 's/.* mean \([0-9.e+-]*\),.*/\1/p')
-      echo "set title '$title; mean $(printf %.3f "$mean")'"
-      echo "plot '$LOGS/fig/sds-$name.png' binary filetype=png with rgbimage"
-    done <<< "$panels"
-    echo 'unset multiplot'
-  } | gnuplot
-  echo "figure $FIG/sds-vcm.png"
-}
-
 # Section 2's figure: the thin gap with the error-bounded ray offset and with the rule of thumb.
 thingap() {
   local panels="pt|pt, error bound|--method pt
@@ -533,7 +508,8 @@ notes() {  # every figure of the pages, by the commands they show
     mkdir -p build/notes
     echo "$cmd"
     eval "$cmd --quiet --overwrite"  # NOTES=1 only: the pages' figures are the project's; eval: quoted lists
-    rm -f "$FIG"/*-[1-8]-*.pfm  # --side-by-side's panels' PFMs: a page shows the labelled PNG
+    # --side-by-side's panels' PFMs: a page shows the labelled PNG, its --ratio reads them here
+    for pfm in "$FIG"/*-[1-8]-*.pfm; do [ -e "$pfm" ] && mv -f "$pfm" build/notes/; done
   done
 }
 

@@ -350,3 +350,29 @@ TEST_CASE("--side-by-side: each panel is the method's own render, the image at l
     CHECK(contains(r.err, "--method does not go with --side-by-side: name the methods in its list"));
     CHECK(run({"scenes/cornell.scene", "--side-by-side", "pt", "--out", "build/tmp/fh_sbs.png"}).status == 2);
 }
+
+// An entry that names a scene renders that scene: one method on two scenes (the point light
+// against the area light), its panel the scene's own render alone.
+TEST_CASE("--side-by-side: an entry's own scene") {
+    Run r = run({"scenes/cornell.scene", "--res", "40x40", "--spp", "2", "--side-by-side", "nee,nee scenes/cornell-point.scene",
+                 "--out", "build/tmp/fh_sbs_scenes.png"});
+    REQUIRE(r.status == 0);
+    REQUIRE(run({"scenes/cornell-point.scene", "--res", "40x40", "--spp", "2", "--method", "nee", "--threads", "1", "--quiet",
+                 "--out", "build/tmp/fh_sbs_point.png"}).status == 0);
+    REQUIRE(run({"scenes/cornell.scene", "--res", "40x40", "--spp", "2", "--method", "nee", "--threads", "1", "--quiet",
+                 "--out", "build/tmp/fh_sbs_area.png"}).status == 0);
+    CHECK(readFile("build/tmp/fh_sbs_scenes-2-nee.pfm") == readFile("build/tmp/fh_sbs_point.pfm"));
+    CHECK(readFile("build/tmp/fh_sbs_scenes-1-nee.pfm") == readFile("build/tmp/fh_sbs_area.pfm"));
+    CHECK(readFile("build/tmp/fh_sbs_scenes-1-nee.pfm") != readFile("build/tmp/fh_sbs_scenes-2-nee.pfm"));
+    // Scenes of different image sizes need one --res; one scene's reference cannot judge another's.
+    r = run({"scenes/cornell.scene", "--spp", "1", "--side-by-side", "nee,nee scenes/sds.scene", "--out", "build/tmp/fh_sbs_scenes.png"});
+    CHECK(r.status == 2);
+    CHECK(contains(r.err, "the scenes' images differ in size (scenes/cornell.scene 256x256, scenes/sds.scene 192x128): give them one with --res WxH"));
+    r = run({"scenes/cornell.scene", "--res", "40x40", "--spp", "1", "--side-by-side", "nee,nee scenes/cornell-point.scene", "--ref",
+             "build/tmp/fh_sbs_area.pfm", "--out", "build/tmp/fh_sbs_scenes.png"});
+    CHECK(r.status == 2);
+    CHECK(contains(r.err, "--ref is one scene's reference"));
+    r = run({"scenes/cornell.scene", "--side-by-side", "nee,nee scenes/no-such.scene", "--out", "build/tmp/fh_sbs_scenes.png"});
+    CHECK(r.status == 2);
+    CHECK(contains(r.err, "in --side-by-side's entry 'nee scenes/no-such.scene'"));
+}

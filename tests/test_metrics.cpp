@@ -101,6 +101,37 @@ TEST_CASE("--ratio: A/B over 4x4 blocks, in false colour, with its percentiles")
     CHECK(!fileExists("build/tmp/ratio_black.png"));
 }
 
+// The PNG of --ratio is a figure: enlarged to at least 560 across, the division and the ratio of
+// means written above it, and a key from blue (1/2) through white (1) to red (2).
+TEST_CASE("--ratio's figure: enlarged, labelled, its colour key running from blue to red") {
+    Image b = constantImage(16, 8, 1), a = constantImage(16, 8, 2);  // A twice as bright: all red
+    std::ostringstream so;
+    Image r;
+    REQUIRE(twoImageCommand("--ratio", a, b, "ratio_figure", r, so) == 0);
+    int w = 0, h = 0, channels = 0;
+    unsigned char* png = stbi_load("build/tmp/ratio_figure.png", &w, &h, &channels, 3);
+    REQUIRE(png != nullptr);
+    CHECK(w >= 560);
+    CHECK(w < 2 * 560);
+    auto pixel = [&](int x, int y) { return Vec3(png[3 * (y * w + x)], png[3 * (y * w + x) + 1], png[3 * (y * w + x) + 2]); };
+    // The key's row: its left end blue, its middle white, its right end red; the map below all red.
+    int keyRow = -1;
+    for (int y = 0; y < h && keyRow < 0; ++y)
+        if (pixel(w / 2, y).x > 250 && pixel(w / 2, y).z > 250 && pixel(w / 20, y).z > 250 && pixel(w / 20, y).x < 80) keyRow = y;
+    REQUIRE(keyRow >= 0);
+    CHECK(pixel(w - w / 20, keyRow).x > 250);
+    CHECK(pixel(w - w / 20, keyRow).z < 80);
+    Vec3 bottom = pixel(w / 2, h - h / 20);
+    CHECK(bottom.x > 250);
+    CHECK(bottom.y < 10);
+    // Text above the key: white pixels where the title is, on a dark strip.
+    int white = 0;
+    for (int y = 0; y < keyRow; ++y)
+        for (int x = 0; x < w; ++x) white += pixel(x, y).y == 255 && pixel(x, y).x == 255;
+    CHECK(white > 500);
+    stbi_image_free(png);
+}
+
 TEST_CASE("the failure table: slope of log(rmse) against log(time), last bias, fireflies and NaNs") {
     std::ofstream a("build/tmp/converges.csv"), b("build/tmp/biased.csv");
     a << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count\n";

@@ -92,13 +92,29 @@ static std::vector<std::string> shellWords(const std::string& line) {
     return words;
 }
 
+// The command made quick: its samples, time and resolution (its side-by-side entries' too)
+// replaced by 1 sample at 8x8, its outputs sent to build/tmp/notes/.
 static std::vector<std::string> quickArgs(const std::string& line) {
     std::vector<std::string> words = shellWords(line), args;
     auto intoBuild = [](const std::string& path) { return "build/tmp/notes/" + path.substr(path.find_last_of('/') + 1); };
+    auto isBudget = [](const std::string& w) { return w == "--spp" || w == "--time" || w == "--res"; };
     for (size_t i = 1; i < words.size(); ++i) {
         const std::string& w = words[i];
         bool hasValue = i + 1 < words.size();
-        if ((w == "--spp" || w == "--time" || w == "--res") && hasValue) { ++i; continue; }
+        if (isBudget(w) && hasValue) { ++i; continue; }
+        if (w == "--side-by-side" && hasValue) {
+            std::string list, entry;
+            std::stringstream entries(words[++i]);
+            while (std::getline(entries, entry, ',')) {
+                std::stringstream entryWords(entry);
+                list += list.empty() ? "" : ",";
+                for (std::string e, sep; entryWords >> e; sep = " ")
+                    if (isBudget(e)) entryWords >> e;
+                    else list += sep + e;
+            }
+            args.insert(args.end(), {w, list});
+            continue;
+        }
         if ((w == "--out" || w == "--strategies") && hasValue) { args.push_back(w); args.push_back(intoBuild(words[++i])); continue; }
         args.push_back(w.rfind("build/", 0) == 0 ? intoBuild(w) : w);  // an earlier command's output, as an input
     }
@@ -370,7 +386,9 @@ TEST_CASE("the pages on paths and strategies each show a path diagram") {
     CHECK(pages >= 6);
 }
 
-TEST_CASE("every make target and every figure the notes mention exists") {
+// A page's image is a figure to show in class: at least 560 pixels across (two fill a slide), as
+// --side-by-side, --ratio, the pyramids and the charts draw them, each with its labels burned in.
+TEST_CASE("every make target and every figure the notes mention exists, each image at least 560 pixels wide") {
     std::string makefile = slurp("Makefile");
     std::regex target("`make ([a-z-]+)`"), image("\\]\\((figures/[^)]+)\\)");
     int targets = 0, images = 0;
@@ -384,7 +402,10 @@ TEST_CASE("every make target and every figure the notes mention exists") {
         for (std::sregex_iterator it(text.begin(), text.end(), image), end; it != end; ++it) {
             CAPTURE(page);
             CAPTURE((*it)[1].str());
-            CHECK(fileExists("lecture_notes/" + (*it)[1].str()));
+            const std::string path = "lecture_notes/" + (*it)[1].str();
+            CHECK(fileExists(path));
+            int w = 0, h = 0, channels = 0;
+            if (hasExtension(path, "png") && stbi_info(path.c_str(), &w, &h, &channels) == 1) CHECK(w >= 560);
             ++images;
         }
     }
