@@ -73,7 +73,6 @@ TEST_CASE("the notes cite only functions that bdpt.cpp defines") {
     CHECK(cited > 40);
 }
 
-// A shown command, made quick: 1 sample per pixel, 8x8 pixels, files into build/tmp/notes/.
 // A command line's words as the shell splits them: "a b" is one word (--side-by-side's list).
 static std::vector<std::string> shellWords(const std::string& line) {
     std::vector<std::string> words;
@@ -92,7 +91,7 @@ static std::vector<std::string> shellWords(const std::string& line) {
     return words;
 }
 
-// The command made quick: its samples, time and resolution (its side-by-side entries' too)
+// A shown command made quick: its samples, time and resolution (its side-by-side entries' too)
 // replaced by 1 sample at 8x8, its outputs sent to build/tmp/notes/.
 static std::vector<std::string> quickArgs(const std::string& line) {
     std::vector<std::string> words = shellWords(line), args;
@@ -493,7 +492,7 @@ TEST_CASE("the efficiencies the pages quote are the generated table's (make figu
         {&p15, "cornell-glass " + e("cornell-glass", "vcm") + " (bdpt " + e("cornell-glass", "bdpt") + "), glass-box " + e("glass-box", "vcm") + " (bdpt " + e("glass-box", "bdpt") + ";"},
         {&p15, e("sds-ior1", "vcm") + " nee --mis, bdpt " + e("sds-ior1", "bdpt")},
         {&a, "nee --mis wins (bdpt " + e("cornell", "bdpt") + ")"},
-        {&a, "tie (" + e("indirect", "lt") + " and " + e("indirect", "bdpt")},
+        {&a, "lead (" + e("indirect", "lt") + " and " + e("indirect", "bdpt")},
         {&a, e("cornell-glass", "bdpt") + " on cornell-glass and " + e("glass-box", "bdpt") + " on glass-box"},
         {&a, "(cornell " + e("cornell", "vcm") + " against " + e("cornell", "bdpt") + ", indirect " + e("indirect", "vcm") + " against " + e("indirect", "bdpt")},
         {&a, "(cornell-glass " + e("cornell-glass", "vcm") + " against " + e("cornell-glass", "bdpt") + ", glass-box " + e("glass-box", "vcm") + " against " + e("glass-box", "bdpt")},
