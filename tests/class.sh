@@ -35,12 +35,14 @@ step "door-hidden: bdpt against mlt ($T s each, RMSE against the reference)"
   --out "$OUT/metropolis.png"
 
 # A deliberate mistake: the ratio image mistaken / right over 4x4 blocks (white equal, red the
-# mistake brighter, blue darker, full colour at a factor of 2), titled with its mean ratio.
+# mistake brighter, blue darker, full colour at a factor of 2, its key above it), titled with its
+# mean ratio.
 mistake() {  # name scene method spp flag what
-  local name=$1 scene=$2 method=$3 spp=$4 flag=$5 what=$6 ratio
-  ./bdpt "$scene" --method "$method" --spp "$spp" --quiet --out "$OUT/work/$name.png"
-  ./bdpt "$scene" --method "$method" --spp "$spp" "$flag" --quiet --out "$OUT/work/$name-mistake.png"
-  ratio=$(./bdpt --ratio "$OUT/work/$name-mistake.pfm" "$OUT/work/$name.pfm" --out "$OUT/work/$name-ratio.png" |
+  local name=$1 scene=$2 method=$3 spp=$4 flag=$5 what=$6 ratio dir=$OUT/work/$1
+  mkdir -p "$dir"  # files named right and mistake: the ratio figure's own title reads "mistake / right"
+  ./bdpt "$scene" --method "$method" --spp "$spp" --quiet --out "$dir/right.png"
+  ./bdpt "$scene" --method "$method" --spp "$spp" "$flag" --quiet --out "$dir/mistake.png"
+  ratio=$(./bdpt --ratio "$dir/mistake.pfm" "$dir/right.pfm" --out "$dir/ratio.png" |
     sed -n 's/.*ratio of means \([0-9.]*\).*/\1/p')
   {
     echo 'set terminal pngcairo size 1280,720 font "sans,22"'
@@ -48,9 +50,9 @@ mistake() {  # name scene method spp flag what
     echo "set multiplot title \"$what\\n$flag: mistake / right = $ratio on average\" font 'sans,26'"
     echo "unset border; unset tics; unset key; set size ratio -1; set lmargin 1; set rmargin 1; set bmargin 1; set tmargin 2"
     local i=0
-    for part in "right|$name" "mistake|$name-mistake" "ratio (red: brighter)|$name-ratio"; do
-      echo "set origin $i / 3.0, 0; set size 1 / 3.0, 0.8; set title '${part%%|*}'"
-      echo "plot '$OUT/work/${part#*|}.png' binary filetype=png with rgbimage"
+    for part in right mistake ratio; do
+      echo "set origin $i / 3.0, 0; set size 1 / 3.0, 0.8; set title '$part'"
+      echo "plot '$dir/$part.png' binary filetype=png with rgbimage"
       i=$((i + 1))
     done
     echo "unset multiplot"
