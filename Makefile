@@ -1,6 +1,10 @@
 # bdpt: make (build), make run (render the default scene), make test, make clean; make help lists all.
 SHELL := /bin/bash
-MAKEFLAGS += --jobs=$(shell nproc 2>/dev/null || echo 2)  # test programs build in parallel
+# Test programs build in parallel; a make started by a target's script (MAKELEVEL > 0) shares
+# its parent's jobs instead of forcing its own, which make would warn about.
+ifeq ($(MAKELEVEL),0)
+MAKEFLAGS += --jobs=$(shell nproc 2>/dev/null || echo 2)
+endif
 CXX      ?= g++
 CXXFLAGS ?= -O2 -g -std=c++17 -Wall -Wextra -pthread
 LDLIBS   ?= -lstb -pthread
