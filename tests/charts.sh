@@ -244,8 +244,8 @@ GP
 # lecture_notes/figures/efficiency.md, spliced into Appendix A, and page 16's rows of it.
 efficiency() {
   make -s build/efficiency
-  local budget="--spp 64 --seeds 2" minutes=2
-  [ -n "$FULL" ] && budget="--spp 256 --seeds 4" minutes=12
+  local budget="--spp 64 --seeds 2" minutes=3
+  [ -n "$FULL" ] && budget="--spp 256 --seeds 4" minutes=25
   echo "efficiency: $budget, about $minutes minutes, into build/efficiency.md"
   # shellcheck disable=SC2086
   ./build/efficiency $budget ${EFFICIENCY_ARGS:-} > build/efficiency.md.tmp && mv build/efficiency.md.tmp build/efficiency.md
