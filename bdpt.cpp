@@ -3698,6 +3698,18 @@ inline int labelWidth(const std::string& text, int scale) {  // drawLabel's adva
     for (char ch : text) w += (ch == 'm' || ch == 'w' || ch == 'M' || ch == 'W' ? 6 : 4) * scale;
     return w;
 }
+// The labels' scale over an image `width` pixels wide: about 24 characters across, smaller if the
+// widest line (its drawLabel width at scale 1) would not fit.
+inline int labelScale(int width, int widest) { return std::max(1, std::min(std::max(2, width / 100), (width - 4) / std::max(1, widest))); }
+
+// An image of w x h sRGB bytes copied into a canvas canvasW wide at (x0, y0), each pixel `zoom`
+// times larger.
+inline void blitZoomed(std::vector<unsigned char>& canvas, int canvasW, const std::vector<unsigned char>& rgb, int w, int h, int zoom,
+                       int x0, int y0) {
+    for (int y = 0; y < h * zoom; ++y)
+        for (int x = 0; x < w * zoom; ++x)
+            std::copy_n(&rgb[3 * (size_t(y / zoom) * w + x / zoom)], 3, &canvas[3 * (size_t(y0 + y) * canvasW + x0 + x)]);
+}
 
 inline bool hasExtension(const std::string& path, const std::string& ext) {  // case-insensitive
     if (path.size() <= ext.size() || path[path.size() - ext.size() - 1] == '/') return false;
@@ -3772,9 +3784,7 @@ inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLe
     forEachPyramidTile(maxLength, layout.merges, [&](int k, int s, int index) {
         std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * index + weighted], exposure + rowStops[k]);
         int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
-        for (int y = 0; y < layout.H; ++y)
-            std::copy(tile.begin() + 3 * size_t(y) * layout.W, tile.begin() + 3 * size_t(y + 1) * layout.W,
-                      canvas.begin() + 3 * (size_t(y0 + y) * layout.canvasW + x0));
+        blitZoomed(canvas, layout.canvasW, tile, layout.W, layout.H, 1, x0, y0);
         std::string label = tileName(k, s) + (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
         drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - 6 * layout.scale, label, layout.scale);
         if (s == 0) drawLabel(canvas, layout.canvasW, layout.canvasH, layout.gap, y0 + (layout.H - 5 * layout.scale) / 2, "k=" + std::to_string(k), layout.scale);
@@ -4555,19 +4565,15 @@ inline int printFailureTable(const std::vector<std::string>& logs, std::ostream&
 // colour key from 1/2 (blue) through 1 (white) to 2 (red).
 inline std::vector<unsigned char> ratioFigure(const Image& ratio, const std::string& title, const std::string& means, int& figureW, int& figureH) {
     const int zoom = std::max(1, (560 + ratio.width - 1) / ratio.width), W = ratio.width * zoom;
-    const int scale = std::max(1, std::min(std::max(2, W / 100), (W - 4) / std::max({1, labelWidth(title, 1), labelWidth(means, 1)})));
+    const int scale = labelScale(W, std::max(labelWidth(title, 1), labelWidth(means, 1)));
     const int gap = 2 * scale, line = 7 * scale, barH = 3 * scale, strip = 2 * line + barH + line + gap;
     figureW = W + 2 * gap, figureH = strip + ratio.height * zoom + 2 * gap;
     std::vector<unsigned char> canvas(size_t(figureW) * figureH * 3, 24);
-    std::vector<unsigned char> rgb = toSRGBBytes(ratioColours(ratio), 0);
-    auto put = [&](int x, int y, const unsigned char* c) { std::copy_n(c, 3, &canvas[3 * (size_t(y) * figureW + x)]); };
-    for (int y = 0; y < ratio.height * zoom; ++y)
-        for (int x = 0; x < W; ++x) put(gap + x, gap + strip + y, &rgb[3 * (size_t(y / zoom) * ratio.width + x / zoom)]);
+    blitZoomed(canvas, figureW, toSRGBBytes(ratioColours(ratio), 0), ratio.width, ratio.height, zoom, gap, gap + strip);
     Image key(W, 1);
     for (int x = 0; x < W; ++x) key.pixels[x] = Vec3(std::exp2(2.0f * (x + 0.5f) / W - 1));  // log2 from -1 to 1
     std::vector<unsigned char> keyRGB = toSRGBBytes(ratioColours(key), 0);
-    for (int y = 0; y < barH; ++y)
-        for (int x = 0; x < W; ++x) put(gap + x, gap + 2 * line + y, &keyRGB[3 * size_t(x)]);
+    for (int y = 0; y < barH; ++y) blitZoomed(canvas, figureW, keyRGB, W, 1, 1, gap, gap + 2 * line + y);
     drawLabel(canvas, figureW, figureH, gap, gap, title, scale);
     drawLabel(canvas, figureW, figureH, gap, gap + line, means, scale);
     const int keyY = gap + 2 * line + barH + scale;
@@ -4856,8 +4862,7 @@ struct PassLog {
     double measuring = 0;
     PassLog(const CommandLine& c, const Scene& scene, const Image& reference)
         : cl(c), ref(reference), running(3 * size_t(scene.camera.width) * scene.camera.height, 0.0) {
-        sceneName = cl.scenePath.substr(cl.scenePath.find_last_of('/') + 1);
-        sceneName = sceneName.substr(0, sceneName.find_last_of('.'));
+        sceneName = fileStem(cl.scenePath);
     }
     bool open() {
         log.open(cl.logPath);
@@ -4936,7 +4941,7 @@ struct SideBySideLayout {
         rows = (n + cols - 1) / cols;
         zoom = std::max({1, (1280 + cols * W - 1) / (cols * W), (600 + rows * H - 1) / (rows * H)});
         panelW = W * zoom, panelH = H * zoom;
-        scale = std::max(1, std::min(std::max(2, panelW / 100), (panelW - 4) / std::max(1, widest)));  // 24 characters, or the widest line
+        scale = labelScale(panelW, widest);
         gap = 2 * scale;
         strip = 3 * 7 * scale + gap;        // three lines of text above each panel
         canvasW = cols * (panelW + gap) + gap, canvasH = rows * (strip + panelH + gap) + gap;
@@ -4960,9 +4965,7 @@ inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<Si
         }
         std::vector<unsigned char> rgb = toSRGBBytes(mean, panel.cl.opt.exposure);
         const int x0 = L.gap + int(i % L.cols) * (L.panelW + L.gap), y0 = L.gap + int(i / L.cols) * (L.strip + L.panelH + L.gap);
-        for (int y = 0; y < L.panelH; ++y)
-            for (int x = 0; x < L.panelW; ++x)
-                std::copy_n(&rgb[3 * (size_t(y / L.zoom) * W + x / L.zoom)], 3, &canvas[3 * (size_t(y0 + L.strip + y) * L.canvasW + x0 + x)]);
+        blitZoomed(canvas, L.canvasW, rgb, W, H, L.zoom, x0, y0 + L.strip);
         std::string lines[3] = {panel.label, passes > 0 ? std::to_string(passes) + " spp  " + duration(seconds) : "starting", ""};
         if (ref.width > 0 && passes > 0) {
             char text[32];
