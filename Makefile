@@ -23,6 +23,8 @@ CXXFLAGS += $(NATIVE_FLAGS)
 endif
 
 TEST_FILES := $(wildcard tests/test_*.cpp)
+# ./bdpt is the lecture's renderer (bdpt.cpp) with the classroom's tools (classroom/), one compile.
+RENDERER := bdpt.cpp classroom/classroom.cpp classroom/figures.h classroom/checks.h
 TEST_HEADERS := tests/helpers.h tests/bench.h tests/densities.h
 
 all: bdpt
@@ -33,36 +35,42 @@ build/flags: FORCE
 	@echo '$(CXX) $(CXXFLAGS) $(LDLIBS)' | cmp -s - $@ || echo '$(CXX) $(CXXFLAGS) $(LDLIBS)' > $@
 FORCE:
 
-bdpt: bdpt.cpp build/flags
-	$(CXX) $(CXXFLAGS) -o $@ $< $(LDLIBS)
+bdpt: $(RENDERER) build/flags
+	$(CXX) $(CXXFLAGS) -o $@ classroom/classroom.cpp $(LDLIBS)
+
+# The lecture's file alone, as a student compiles it (g++ -O2 -std=c++17 -pthread bdpt.cpp -lstb):
+# make test renders every method with it and checks that ./bdpt renders the same bits.
+build/bdpt-lecture: bdpt.cpp build/flags
+	@mkdir -p build
+	$(CXX) $(filter-out -g,$(CXXFLAGS)) -o $@ bdpt.cpp $(LDLIBS)
 
 run: bdpt
 	@mkdir -p build
 	./bdpt scenes/cornell.scene --spp 64 --out build/cornell.png
 
 # One test file alone, as its own program (make build/test_bdpt), for work on it.
-build/%: tests/%.cpp bdpt.cpp $(TEST_HEADERS) build/flags
+build/%: tests/%.cpp $(RENDERER) $(TEST_HEADERS) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 # make test: every test file in one program (tests/all_tests.cpp), so that bdpt.cpp is compiled
 # once; tests/run_tests.sh runs it file by file, one line each, and sums them on the last line.
 # Without debug information, which is a quarter of the compile (make build/test_bdpt keeps it).
-build/all_tests: tests/all_tests.cpp $(TEST_FILES) bdpt.cpp $(TEST_HEADERS) build/flags
+build/all_tests: tests/all_tests.cpp $(TEST_FILES) $(RENDERER) $(TEST_HEADERS) build/flags
 	@mkdir -p build
 	$(CXX) $(filter-out -g,$(CXXFLAGS)) -I. -o $@ $< $(LDLIBS)
 
 # The BVH tests once more as built by NATIVE=1 (8-wide AVX nodes where the CPU has AVX), and as
 # on a CPU without SSE (the scalar box test); at -O1 without debug information, which halves their
 # compile and leaves the arithmetic (no fast-math, no fused multiply-adds) as it is.
-build/native/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h tests/bench.h build/flags
+build/native/test_bvh: tests/test_bvh.cpp $(RENDERER) tests/helpers.h tests/bench.h build/flags
 	@mkdir -p build/native
 	$(CXX) $(filter-out -O2 -g,$(CXXFLAGS)) -O1 $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
-build/scalar/test_bvh: tests/test_bvh.cpp bdpt.cpp tests/helpers.h tests/bench.h build/flags
+build/scalar/test_bvh: tests/test_bvh.cpp $(RENDERER) tests/helpers.h tests/bench.h build/flags
 	@mkdir -p build/scalar
 	$(CXX) $(filter-out -O2 -g,$(CXXFLAGS)) -O1 -U__SSE2__ -U__AVX__ -I. -o $@ $< $(LDLIBS)
 
-test: bdpt build/all_tests build/native/test_bvh build/scalar/test_bvh
+test: bdpt build/bdpt-lecture build/all_tests build/native/test_bvh build/scalar/test_bvh
 	@tests/run_tests.sh build/all_tests build/native/test_bvh build/scalar/test_bvh
 
 # Speed against accuracy (gnuplot-nox), tests/charts.sh. Quick by default, into build/ only;
@@ -120,11 +128,11 @@ help:
 
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it too).
 SANITIZE := -O1 -g -std=c++17 -Wall -Wextra -pthread -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-build/san/all_tests: tests/all_tests.cpp $(TEST_FILES) bdpt.cpp $(TEST_HEADERS)
+build/san/all_tests: tests/all_tests.cpp $(TEST_FILES) $(RENDERER) $(TEST_HEADERS)
 	@mkdir -p build/san
 	$(CXX) $(SANITIZE) -I. -o $@ $< $(LDLIBS)
 
-test-sanitize: bdpt build/san/all_tests
+test-sanitize: bdpt build/bdpt-lecture build/san/all_tests
 	@tests/run_tests.sh build/san/all_tests
 
 # Fuzz the scene parser with libFuzzer (clang), from the bad-scene corpus, for FUZZ_SECONDS.
@@ -141,13 +149,13 @@ fuzz: build/fuzz_scene
 # The BVH against Embree on the same rays (tests/bench.sh). Embree's half is built only where
 # Debian's libembree-dev is installed.
 EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
-build/bench_rays: tests/bench_rays.cpp tests/bench.h bdpt.cpp build/flags
+build/bench_rays: tests/bench_rays.cpp tests/bench.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
-build/native/bench_rays: tests/bench_rays.cpp tests/bench.h bdpt.cpp build/flags
+build/native/bench_rays: tests/bench_rays.cpp tests/bench.h $(RENDERER) build/flags
 	@mkdir -p build/native
 	$(CXX) $(CXXFLAGS) $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
-build/embree_rays: tests/embree_rays.cpp tests/bench.h bdpt.cpp build/flags
+build/embree_rays: tests/embree_rays.cpp tests/bench.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS) -lembree3
 
@@ -156,18 +164,18 @@ bench: bdpt build/bench_rays build/native/bench_rays $(if $(EMBREE),build/embree
 	tests/bench.sh
 
 # Error at equal samples and efficiency 1/(MSE x CPU-s) of every method (tests/efficiency.cpp).
-build/efficiency: tests/efficiency.cpp tests/bench.h bdpt.cpp build/flags
+build/efficiency: tests/efficiency.cpp tests/bench.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 # The densities of page 10's "Combination of Estimators: Example" (tests/estimators.cpp).
-build/estimators: tests/estimators.cpp tests/bench.h tests/densities.h bdpt.cpp build/flags
+build/estimators: tests/estimators.cpp tests/bench.h tests/densities.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 # Uneven convergence (tests/uneven.cpp): bdpt, mlt, pssmlt and mmlt per region on the door scene at
 # equal time, into build/ (make figures puts its figure into the notes).
-build/uneven: tests/uneven.cpp tests/bench.h bdpt.cpp build/flags
+build/uneven: tests/uneven.cpp tests/bench.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 uneven: build/uneven

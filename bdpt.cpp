@@ -5,38 +5,34 @@
 // Read it top to bottom with the slides open:
 //   1 math & random numbers   2 geometry            3 BVH (appendix B; skip it on a first read)
 //   4 materials (BSDFs)       5 lights              6 camera
-//   7 integrators: pt, nee, lt, ir, bdpt, and the slides' "later", vcm, mlt and mmlt
-//   8 film & rendering loop   9 scene file         10 command line
+//   7 integrators: the slides' panels (a)-(f): pt, nee, lt, ir, bdpt
+//   8 later: the slides' "later" methods, vcm and Metropolis (pssmlt, mmlt, mlt)
+//   9 film & rendering loop  10 scene file         11 command line
 // Units: radiance L, intensity I, power Phi, importance W_e. Directions point away from surfaces.
+// It compiles alone: g++ -O2 -std=c++17 -pthread bdpt.cpp -lstb. The classroom's tools (side by
+// side, live images, error against a reference, figures) are in classroom/, which includes it.
 // ============================================================================================
 #include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
-#include <climits>
 #include <cmath>
 #include <cerrno>
-#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <fstream>
 #include <functional>
-#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <numeric>
 #include <set>
 #include <sstream>
 #include <string>
 #include <thread>
-#include <tuple>
 #include <vector>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 // stb_image_write: Debian's libstb-dev (the header in stb/, its code in -lstb), or where that is
@@ -82,10 +78,9 @@ inline bool isBlack(Vec3 a) { return a.x == 0 && a.y == 0 && a.z == 0; }
 inline bool isFinite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 inline float sqr(float x) { return x * x; }
 
-// PCG32 (O'Neill): small state, good statistics, and independent streams, so every pixel and pass
-// gets its own generator and the image is the same whatever the number of threads.
-// Every number a method draws passes through Rng::uniform, the one place where Metropolis
-// sampling (section 7 (h)) can hand a walker the numbers of its chain's state instead.
+// PCG32 (O'Neill): small state, good statistics, and independent streams: every pixel and pass has
+// its own generator, and the image does not depend on the number of threads. Every number a method
+// draws passes Rng::uniform, where Metropolis (section 8 (h)) hands a walker its chain's numbers.
 struct PrimaryStream;
 float replayUniform(PrimaryStream& stream);
 constexpr uint32_t kLowDiscrepancyDimensions = 32;  // below: dimensions drawn from a Sobol point
@@ -130,23 +125,21 @@ inline Rng makeRng(uint64_t seed, uint64_t a, uint64_t b) {
 }
 
 // -- Quasi-random numbers ("stratification"). N independent samples leave gaps and clumps: the
-// error of their mean falls as N^-1/2. N points that fill the unit square evenly, one in every
-// cell of every grid of N equal cells (1 x 1/N, 2 x 1/(N/2), ...: the "elementary intervals"),
-// miss no region of a smooth integrand, and the error falls faster: with Owen's scramble (below)
-// as N^-3/2 for smooth 2D integrands, about N^-1 across an edge such as a shadow's.
-// A path's numbers are one point in many dimensions (film position, then per vertex the lamp
-// choice if there are several, the lamp point, the BSDF's direction, roulette), all of which can
-// be stratified jointly: the Sobol sequence, dimension d the digital construction x_d(i) = C_d i
-// (i's bits times a binary matrix, read as a binary fraction), is such that its first 2^m points, and every
-// aligned block of 2^m after them, fill the elementary intervals of every low-dimensional
-// projection nearly evenly. Dimension 0 is the radical inverse (C_0 = identity); the others'
-// matrices come from a primitive polynomial and initial direction numbers m_k, for which we take
-// Joe and Kuo's (2008), chosen to make the 2D projections even.
-// Each pixel gets the sequence randomised by a nested uniform scramble (Owen 1995), drawn from the
-// seed: every binary digit of every coordinate flipped by a random function of the digits before
-// it. That keeps the stratification, makes each point uniform in [0,1)^d (the estimator stays
-// unbiased) and pixels' errors independent, as the tests over seeds assume. Dimensions past
-// kLowDiscrepancyDimensions (deep bounces, a small share of the image) come from PCG32 again.
+// error of their mean falls as N^-1/2. N points that fill the unit square evenly, one in every cell
+// of every grid of N equal cells (the "elementary intervals"), miss no region of a smooth
+// integrand, and the error (RMSE) falls faster: with Owen's scramble as N^-3/2 for smooth 2D
+// integrands, about N^-3/4 across an edge such as a shadow's (page 9 measures an RMSE of N^-0.7 for
+// direct light). A path's numbers (film position, then per vertex the lamp choice, the lamp point,
+// the BSDF's direction, roulette) are one point in many dimensions, stratified jointly by the Sobol
+// sequence: dimension d is x_d(i) = C_d i (i's bits times a binary matrix, read as a binary
+// fraction), and its first 2^m points, and every aligned block of 2^m after them, fill the
+// elementary intervals of every low-dimensional projection nearly evenly. C_0 is the identity (the
+// radical inverse); the others come from a primitive polynomial and Joe and Kuo's (2008) initial
+// direction numbers m_k. Each pixel gets the sequence randomised by a nested uniform scramble (Owen
+// 1995): every binary digit of every coordinate flipped by a random function of the digits before
+// it, which keeps the stratification, makes each point uniform in [0,1)^d (the estimator stays
+// unbiased) and pixels' errors independent. Dimensions past kLowDiscrepancyDimensions (deep
+// bounces) come from PCG32 again.
 
 constexpr uint32_t reverseBits(uint32_t x) {
     x = (x << 16) | (x >> 16);
@@ -268,20 +261,18 @@ inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyD
     std::copy(cached, cached + kLowDiscrepancyDimensions, digits);
 }
 // A stream's own order of the sequence (Burley 2020): index's bits scrambled like a coordinate's
-// digits, but from the top, each flipped by a hash of the bits above it. The first 2^m indices
-// then map onto one aligned block of 2^m, itself a net, in a random order. Two streams whose
-// numbers meet in one path (bdpt's camera and light subpaths, a pixel and ir's VPLs) must not
-// draw the same point i: scrambled apart, x_d(i) and y_d(i) still share i's digits, and pairs
-// of them cluster along a scrambled diagonal (bdpt's MSE would fall as N^-0.7 instead of N^-1).
-// Within blocks of 2^16 passes: fewer bits set, fewer columns to add up in sobolPoint.
+// digits, from the top: the first 2^m indices map onto one aligned block of 2^m (a net) in a random
+// order. Two streams whose numbers meet in one path (bdpt's camera and light subpaths, a pixel and
+// ir's VPLs) must not draw the same point i: x_d(i) and y_d(i) would share i's digits and cluster
+// along a scrambled diagonal (bdpt's MSE falling as N^-0.7, not N^-1). Within blocks of 2^16
+// passes: fewer bits set, fewer columns to add up in sobolPoint.
 inline uint32_t shuffledIndex(uint32_t index, uint32_t seed) {
     uint32_t low = reverseBits(scrambleDigits(reverseBits(index & 0xFFFFu), seed)) & 0xFFFFu;
     return (index & ~0xFFFFu) | low;
 }
-// Coordinates first..first+3, scrambled by their own seeds (or not: the deliberate mistake
-// --no-scramble, the same points in every pixel) and turned into binary fractions. uniform()
-// asks for the next four as it starts a block of four: four independent hashes, done while the
-// caller uses the numbers it has, cost a third less time than one hash per number it waits for.
+// Coordinates first..first+3, scrambled by their own seeds (or not: --no-scramble, the mistake)
+// and turned into binary fractions. uniform() asks for the next four as it starts a block of four:
+// four independent hashes, done while the caller uses its numbers, cost less than one at a time.
 inline void Rng::scrambleCoordinates(uint32_t first) {
     for (uint32_t d = first; d < first + 4; ++d) {
         const LcgJump& jump = kScrambleSeeds.step[d];
@@ -464,8 +455,9 @@ inline SurfacePoint makeSurfacePoint(const Shape& s, int shapeIndex, Vec3 p, boo
 
 // p pushed off its surface (normal ng, error pError) to the side of dir: by |ng|.pError along
 // ng, then each coordinate rounded one float further away, so the rounding of the addition
-// cannot bring it back (pbrt-v3 OffsetRayOrigin).
-inline Vec3 offsetRayOrigin(Vec3 p, Vec3 pError, Vec3 ng, Vec3 dir) {
+// cannot bring it back (pbrt-v3 OffsetRayOrigin). Inlined always: every ray and both ends of
+// every shadow ray pass here (ir: per VPL), and a call costs ir 4% of its time.
+[[gnu::always_inline]] inline Vec3 offsetRayOrigin(Vec3 p, Vec3 pError, Vec3 ng, Vec3 dir) {
     float d = dot(absVec(ng), pError);
     Vec3 offset = (dot(dir, ng) > 0 ? d : -d) * ng, o = p + offset;
     for (int i = 0; i < 3; ++i)
@@ -827,10 +819,11 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<float> lightCdf;   // cumulative Phi / total Phi, for choosing a light by power
     float totalPower = 0;
-    Bvh bvh;
+    std::shared_ptr<const Bvh> bvh;    // shared by copies: a copy of a Scene costs its few shapes
     bool bruteForce = false;           // true: the plain loop over shapes, for tests and teaching
     // Not from the file: the run's deliberate mistakes (section 1), kept beside the scene because
-    // the functions that apply them (BSDFs, hit points, subpath densities) all read the scene.
+    // the functions that apply them (BSDFs, hit points, subpath densities) all read the scene; a
+    // run with other mistakes renders a copy (classroom/'s side by side: one per panel).
     Conventions conventions;
     float exposure = 0;                // the PNG's default exposure in stops (--exposure overrides)
 };
@@ -849,60 +842,29 @@ inline bool occludedBruteForce(const std::vector<Shape>& shapes, const Ray& ray)
         if (intersectShape(s, ray) < ray.tmax) return true;
     return false;
 }
-inline void buildAcceleration(Scene& scene) { scene.bvh = buildBvh(scene.shapes); }
+inline void buildAcceleration(Scene& scene) { scene.bvh = std::make_shared<const Bvh>(buildBvh(scene.shapes)); }
 
-// Rays traced by this thread: what a sample costs, as the summary line reports it per method.
+// Rays traced by this thread: what a sample costs, the slides' "more costly", counted where it is
+// paid. A render adds up its threads' counts (parallelRows) and reports them per sample.
 struct RayCount {
     long long closest = 0, shadow = 0;
-    RayCount& operator+=(const RayCount& o) {
-        closest += o.closest, shadow += o.shadow;
-        return *this;
-    }
 };
 inline thread_local RayCount gRaysTraced;
-
-// --profile: where a sample's time goes, by part of the work. The clock charges the time since its
-// last reading to the part running then; a CostScope enters a part and, when it ends, hands the
-// clock back to the part it interrupted (tracing inside a merge is tracing). Off, a scope costs a
-// test of a flag. --profile renders on one thread, so one clock serves.
-enum class Cost { Other, Tracing, Mis, Merging, Count };  // Other: shading, sampling, camera, film
-struct CostClock {
-    bool on = false;
-    Cost current = Cost::Other;
-    uint64_t last = 0, ticks[int(Cost::Count)] = {};
-    static uint64_t now() {
-#if defined(__x86_64__) || defined(__i386__)
-        return __builtin_ia32_rdtsc();  // the time stamp counter: a few cycles where a clock call is tens
-#else
-        return uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
+// classroom/'s --profile times the parts of a sample (tracing here, MIS and merging in section 8)
+// by defining PROFILE_PART before it includes this file; in this program it is nothing.
+#ifndef PROFILE_PART
+#define PROFILE_PART(part)
 #endif
-    }
-    void switchTo(Cost next) {
-        uint64_t t = now();
-        ticks[int(current)] += t - last;
-        last = t, current = next;
-    }
-};
-inline CostClock gCostClock;
-struct CostScope {
-    Cost outer = gCostClock.current;
-    explicit CostScope(Cost part) {
-        if (gCostClock.on) gCostClock.switchTo(part);
-    }
-    ~CostScope() {
-        if (gCostClock.on) gCostClock.switchTo(outer);
-    }
-};
 
 inline Hit intersect(const Scene& scene, const Ray& ray) {
-    CostScope cost(Cost::Tracing);
+    PROFILE_PART(Tracing);
     ++gRaysTraced.closest;
-    return scene.bruteForce ? intersectBruteForce(scene.shapes, ray) : traverseBvh<false>(scene.bvh, ray);
+    return scene.bruteForce ? intersectBruteForce(scene.shapes, ray) : traverseBvh<false>(*scene.bvh, ray);
 }
 inline bool occluded(const Scene& scene, const Ray& ray) {
-    CostScope cost(Cost::Tracing);
+    PROFILE_PART(Tracing);
     ++gRaysTraced.shadow;
-    return scene.bruteForce ? occludedBruteForce(scene.shapes, ray) : traverseBvh<true>(scene.bvh, ray).found();
+    return scene.bruteForce ? occludedBruteForce(scene.shapes, ray) : traverseBvh<true>(*scene.bvh, ray).found();
 }
 inline SurfacePoint surfaceAt(const Scene& scene, const Ray& ray, const Hit& hit) {
     return makeSurfacePoint(scene.shapes[hit.shape], hit.shape, ray.o + hit.t * ray.d, scene.conventions.fixedRayOffset);
@@ -1119,7 +1081,7 @@ struct EmissionSample {
     Vec3 weight;        // Le |cos| / (pdfArea pdfDir): the light path's starting throughput
 };
 
-// A direction from the light point es.point (Veach's mutations, section (h), resample it alone).
+// A direction from the light point es.point (Veach's mutations, section 8 (h), resample it alone).
 inline void sampleEmissionDirection(EmissionSample& es, float u1, float u2) {
     if (es.point.deltaPosition) {
         es.dir = sampleUniformSphere(u1, u2);
@@ -1169,6 +1131,14 @@ inline FilmPoint jitteredFilmPoint(int x, int y, Rng& rng) {
     float u1 = rng.uniform(), u2 = rng.uniform();
     return {filmCoordinate(x, u1), filmCoordinate(y, u2)};
 }
+// A uniform point on the whole film (the Metropolis methods' camera samples): the pixel is where
+// u W falls, the point in it the rest; pixelAt names the pixel.
+inline FilmPoint uniformFilmPoint(const Camera& cam, Rng& rng) {
+    float fx = rng.uniform() * cam.width, fy = rng.uniform() * cam.height;
+    int px = std::min(int(fx), cam.width - 1), py = std::min(int(fy), cam.height - 1);
+    return {filmCoordinate(px, fx - px), filmCoordinate(py, fy - py)};
+}
+inline int pixelAt(const Camera& cam, FilmPoint f) { return int(f.y) * cam.width + int(f.x); }
 inline Ray pixelRay(const Camera& cam, int x, int y, Rng& rng) {
     FilmPoint f = jitteredFilmPoint(x, y, rng);
     return cameraRay(cam, f.x, f.y);
@@ -1215,17 +1185,17 @@ inline void setResolution(Camera& cam, int width, int height) {
 }
 
 // == 7. Integrators ============================================================================
-// Slides "Path sampling techniques" and "Results from different techniques": panels (a) to (f),
-// then (g) "Vertex Connection and Merging (VCM, later)" and (h) "Metropolis-Sampling (see
-// later)". Every method is one function of the same shape over the shared pieces above,
+// Slides "Path sampling techniques" and "Results from different techniques": panels (a) to (f);
+// section 8 adds the slides' "later" methods, (g) vcm and (h) Metropolis. Every method is one
+// function of the same shape over the shared pieces above,
 //     Vec3 sampleXX(scene, options, pass data, pixel x, pixel y, the pixel's Rng, row output):
 // one sample of pixel (x, y), what its camera path brings back returned, what its light paths
 // bring to other pixels splatted; a diff of two methods shows how they differ. ir, vcm and the
-// Metropolis methods first prepare what the whole pass shares (section 8's preparePass).
+// Metropolis methods first prepare what the whole pass shares (section 9's preparePass).
 // Paths are counted in bounces (scattering vertices): a path of k segments has k-1 bounces, and
 // --maxdepth D keeps paths with at most D bounces.
 enum class Method { PT, NEE, LT, IR, BDPT, VCM, PSSMLT, MMLT, MLT };
-inline bool isMetropolis(Method m) { return m == Method::PSSMLT || m == Method::MMLT || m == Method::MLT; }  // section (h)
+inline bool isMetropolis(Method m) { return m == Method::PSSMLT || m == Method::MMLT || m == Method::MLT; }  // section 8 (h)
 // How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
 // Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
 // the depth limit. bdpt's banner says which it uses and why.
@@ -1233,22 +1203,18 @@ enum class Roulette { Throughput, Albedo, Off };
 enum class Sampler { Sobol, Random };  // section 1: Owen-scrambled Sobol points, or PCG32 alone
 enum class Heuristic { Balance, Power, Max, Uniform };  // bdpt's MIS heuristics (its banner)
 
-struct RenderOptions {
+// What a sample reads: the method and its parameters.
+struct SampleOptions {
     Method method = Method::BDPT;
     bool mis = false;          // nee: combine light and BSDF sampling (power heuristic)
-    int spp = 16;              // passes of one sample per pixel
-    double seconds = 0;        // > 0: render passes until this much time has passed
-    int threads = 0;           // 0: all cores
     uint64_t seed = 1;
     int maxDepth = 32;         // bounces
     int rrStart = 3;           // Russian roulette from this many bounces on (Roulette::Throughput)
     Roulette roulette = Roulette::Albedo;  // how lt, ir and bdpt end their subpaths (pt, nee: Throughput)
-    float exposure = 0;        // stops, for the PNG only
-    bool quiet = false;
     int vplPaths = 16;         // ir: light paths traced per pass, each leaving VPLs
     float clamp = 0;           // ir: > 0 bounds the geometry term G at this value
     Heuristic heuristic = Heuristic::Balance;  // bdpt: how strategies are weighted
-    int strategyMaxLength = 0; // bdpt, vcm: > 0 records per-strategy images up to this path length
+    int strategyMaxLength = 0; // bdpt, vcm: > 0 records each strategy's contribution up to this path length
     float mergeRadius = -1;    // vcm: r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
     float alpha = 0.75f;       // vcm: r(n) = r_0 n^((alpha-1)/2) in pass n
     float largeStep = 0.3f;    // pssmlt, mmlt: probability of a large step (every number afresh)
@@ -1261,15 +1227,19 @@ struct RenderOptions {
     int minDepth = 0;          // bdpt's connections: paths of fewer bounces are left out (the chains' own, above)
     Sampler sampler = Sampler::Sobol;  // every pixel sample's numbers (section 1)
     bool noScramble = false;   // --no-scramble: the deliberate mistake, one point set for every pixel and pair
-    // Called after each pass with that pass's image and the non-finite samples dropped so far.
-    std::function<void(int pass, const std::vector<Vec3>& passImage, long long nonFinite)> onPass;
+};
+// What a run reads besides: how many passes, and on how many threads.
+struct RenderOptions : SampleOptions {
+    int spp = 16;              // passes of one sample per pixel
+    double seconds = 0;        // > 0: render passes until this much time has passed
+    int threads = 0;           // 0: all cores
 };
 
 // The numbers of sample `index` of stream `stream` (a pixel, a light path, a VPL path; `salt`
 // tells the kinds apart, 0 the camera's): PCG32 for --sampler random, else its low-discrepancy
 // points, each stream's scrambled apart from the seed, so that seeds and pixels give independent
 // estimates; every stream but the camera's draws them in its own order (shuffledIndex).
-inline Rng sampleRng(const RenderOptions& opt, uint64_t salt, uint64_t stream, uint64_t index) {
+inline Rng sampleRng(const SampleOptions& opt, uint64_t salt, uint64_t stream, uint64_t index) {
     Rng rng = makeRng(opt.seed ^ salt, stream, index);
     if (opt.sampler == Sampler::Random) return rng;
     rng.lowDiscrepancy = true;
@@ -1286,64 +1256,68 @@ struct Splat {                 // a light-path contribution that lands on some p
     Vec3 value;
 };
 
-// What one image row's samples leave besides their pixels' values; rows are merged in order.
-struct StrategySplat {          // bdpt --strategies: a contribution to image `image`
+// One strategy's contribution to a pixel, unweighted and its MIS weight: the slides' "contributions
+// of different paths", one image per strategy (section 9), and mlt's candidate starts (section 8).
+// A merge (vcm) of the light vertex s (0-based) with the camera vertex t-1 has merge set.
+struct StrategySplat {
     int pixel;
     Vec3 value;
-    int image;                 // 2 (s,t) index + (0 unweighted, 1 MIS-weighted)
+    float weight;
+    int s, t;
+    bool merge = false;
 };
 
+// What one image row's samples leave besides their pixels' values; rows are merged in order.
 struct RowOutput {
     std::vector<Splat> splats;
-    std::vector<StrategySplat> strategySplats;
+    std::vector<StrategySplat> strategySplats;  // SampleOptions::strategyMaxLength > 0
     long long nonFinite = 0;
     double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: what the clamp removed
 };
 
 // What a method prepared for the whole pass before its pixels: ir's virtual point lights, vcm's
-// light subpaths and grid, the Metropolis chains (section 8 makes them; the types come with each method).
+// light subpaths and grid, the Metropolis chains (section 9 makes them; the types come with each method).
 struct Vpl;
 struct VcmPass;
-struct MltPass;
+struct MetropolisPass;
 struct PassData {
     int pass = 0;
     const std::vector<Vpl>* vpls = nullptr;
     const VcmPass* vcm = nullptr;
-    const MltPass* mlt = nullptr;
+    const MetropolisPass* metropolis = nullptr;
 };
 
-// Runs body(row, onCallingThread) for rows 0..rows-1 on `threads` threads (the calling one among
-// them: it alone may draw the progress bar); returns the rays they traced.
-inline RayCount parallelRows(int rows, int threads, const std::function<void(int, bool)>& body) {
+// Runs body(row) for rows 0..rows-1 on `threads` threads, the calling one among them; what the
+// others traced is added to the calling thread's ray count, so that a render counts its rays.
+template <class Body>
+inline void parallelRows(int rows, int threads, const Body& body) {
     std::atomic<int> nextRow{0};
-    std::atomic<long long> closest{0}, shadow{0};
     std::atomic<bool> outOfMemory{false};
-    auto worker = [&](bool onCallingThread) {
+    std::vector<RayCount> traced(std::max(1, threads));
+    auto worker = [&](int i) {
         RayCount before = gRaysTraced;
         try {
-            for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y, onCallingThread);
+            for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y);
         } catch (const std::bad_alloc&) {  // thrown on, by the calling thread, once all have stopped
             outOfMemory = true;
             nextRow = rows;
         }
-        closest += gRaysTraced.closest - before.closest;
-        shadow += gRaysTraced.shadow - before.shadow;
+        traced[i] = {gRaysTraced.closest - before.closest, gRaysTraced.shadow - before.shadow};
     };
     std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, false);
-    worker(true);
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i);
+    worker(0);
     for (std::thread& t : pool) t.join();
+    for (int i = 1; i < threads; ++i) gRaysTraced.closest += traced[i].closest, gRaysTraced.shadow += traced[i].shadow;
     if (outOfMemory) throw std::bad_alloc();
-    return {closest.load(), shadow.load()};
 }
-
 
 // Russian roulette ("Path tracing with Russian roulette"): continue with probability q and divide
 // the throughput by q, so E[beta 1(u<q)/q] = beta: the estimator's mean is unchanged, only paths
 // that would contribute little are cut. For pt and nee (and --roulette throughput) q follows the
 // throughput relative to the path's start (a light path starts at Phi/p, a camera path at 1),
 // capped below 1 so that every path ends; lt, ir and bdpt use the albedo (bdpt's banner: why).
-inline bool russianRoulette(Vec3& beta, float startThroughput, int bounces, const RenderOptions& opt, Rng& rng) {
+inline bool russianRoulette(Vec3& beta, float startThroughput, int bounces, const SampleOptions& opt, Rng& rng) {
     if (bounces < opt.rrStart) return true;
     float q = std::min(0.95f, maxComponent(beta) / startThroughput);
     if (!(rng.uniform() < q)) return false;
@@ -1358,7 +1332,7 @@ inline float powerHeuristic(float pdfA, float pdfB) {  // Veach's power heuristi
 
 // -- (a) pt: "unidirectional (eye tracing)". Only p_{k,0}: emission counts when a path happens to
 // hit an emitter, so a point light (nothing can hit it) stays black: "especially for point lights".
-inline Vec3 samplePT(const Scene& scene, const RenderOptions& opt, const PassData&, int x, int y, Rng& rng, RowOutput&) {
+inline Vec3 samplePT(const Scene& scene, const SampleOptions& opt, const PassData&, int x, int y, Rng& rng, RowOutput&) {
     Ray ray = pixelRay(scene.camera, x, y, rng);
     Vec3 L(0), beta(1);
     for (int bounces = 0;; ++bounces) {
@@ -1400,7 +1374,7 @@ inline Vec3 estimateDirect(const Scene& scene, const SurfacePoint& sp, Vec3 wo, 
 // a light point is connected. Without mis an emitter hit by a BSDF-sampled ray is counted only
 // after the camera or a specular bounce (where no light point could have been connected), so
 // that no path is counted twice ("make sure no path is counted multiple times, either!").
-inline Vec3 sampleNEE(const Scene& scene, const RenderOptions& opt, const PassData&, int x, int y, Rng& rng, RowOutput&) {
+inline Vec3 sampleNEE(const Scene& scene, const SampleOptions& opt, const PassData&, int x, int y, Rng& rng, RowOutput&) {
     Ray ray = pixelRay(scene.camera, x, y, rng);
     Vec3 L(0), beta(1);
     bool afterDelta = true;   // the camera counts as a delta vertex
@@ -1570,7 +1544,7 @@ inline void appendVertex(const Scene& scene, std::vector<PathVertex>& path, cons
 }
 
 // Extends a subpath by BSDF sampling, each new vertex by appendVertex.
-inline void randomWalk(const Scene& scene, const RenderOptions& opt, Ray ray, Vec3 beta, int maxSurfaceVertices,
+inline void randomWalk(const Scene& scene, const SampleOptions& opt, Ray ray, Vec3 beta, int maxSurfaceVertices,
                        Transport mode, Rng& rng, std::vector<PathVertex>& path) {
     const float start = maxComponent(beta);  // Russian roulette follows the throughput relative to it
     for (int bounces = 0; bounces < maxSurfaceVertices; ++bounces) {
@@ -1611,7 +1585,7 @@ inline PathVertex pinholeVertex(const Scene& scene) {
 }
 
 // Subpaths of up to --maxdepth bounces, or (mmlt) of exactly `vertices` vertices where they survive.
-inline void cameraSubpath(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, Rng& rng,
+inline void cameraSubpath(const Scene& scene, const SampleOptions& opt, float filmX, float filmY, Rng& rng,
                           std::vector<PathVertex>& path, int vertices = 0) {
     path.clear();
     path.push_back(pinholeVertex(scene));
@@ -1631,7 +1605,7 @@ inline PathVertex lightVertex(const LightPoint& lp) {
     return y0;
 }
 
-inline void lightSubpath(const Scene& scene, const RenderOptions& opt, Rng& rng, std::vector<PathVertex>& path, int vertices = 0) {
+inline void lightSubpath(const Scene& scene, const SampleOptions& opt, Rng& rng, std::vector<PathVertex>& path, int vertices = 0) {
     path.clear();
     EmissionSample es = sampleEmission(scene, rng);
     path.push_back(lightVertex(es.point));
@@ -1689,7 +1663,7 @@ inline bool mutuallyVisible(const Scene& scene, const PathVertex& a, const PathV
 // by hitting the light after the refraction (pt, nee: noisy) and never for a point light: no
 // connection can pass through glass, but a light path goes through it by sampling alone.
 // The pixel's stream traces one light path; what reaches the pixel itself comes as splats too.
-inline Vec3 sampleLT(const Scene& scene, const RenderOptions& opt, const PassData&, int, int, Rng& rng, RowOutput& out) {
+inline Vec3 sampleLT(const Scene& scene, const SampleOptions& opt, const PassData&, int, int, Rng& rng, RowOutput& out) {
     thread_local std::vector<PathVertex> light;
     lightSubpath(scene, opt, rng, light);
     for (const PathVertex& y : light) {
@@ -1713,7 +1687,7 @@ struct Vpl {
     int bounces = 0;    // scattering vertices before y on its light path
 };
 
-inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, int pass) {
+inline std::vector<Vpl> traceVpls(const Scene& scene, const SampleOptions& opt, int pass) {
     std::vector<Vpl> vpls;
     std::vector<PathVertex> path;
     for (int i = 0; i < opt.vplPaths; ++i) {
@@ -1728,7 +1702,7 @@ inline std::vector<Vpl> traceVpls(const Scene& scene, const RenderOptions& opt, 
     return vpls;
 }
 
-inline Vec3 gatherVpls(const Scene& scene, const RenderOptions& opt, const std::vector<Vpl>& vpls, const PathVertex& x,
+inline Vec3 gatherVpls(const Scene& scene, const SampleOptions& opt, const std::vector<Vpl>& vpls, const PathVertex& x,
                        int cameraBounces, RowOutput& out) {
     Vec3 sum(0);
     for (const Vpl& v : vpls) {
@@ -1750,7 +1724,7 @@ inline Vec3 gatherVpls(const Scene& scene, const RenderOptions& opt, const std::
 }
 
 // The camera half of ir: follow specular bounces, gather at the first non-specular vertex.
-inline Vec3 sampleIR(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
+inline Vec3 sampleIR(const Scene& scene, const SampleOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
     Ray ray = pixelRay(scene.camera, x, y, rng);
     Vec3 L(0), beta(1);
     for (int bounces = 0; bounces <= opt.maxDepth; ++bounces) {
@@ -1773,48 +1747,39 @@ inline Vec3 sampleIR(const Scene& scene, const RenderOptions& opt, const PassDat
 // -- (f) bdpt: "bidirectional path tracing" (Lafortune & Willems 1993; Veach & Guibas 1995).
 // One camera subpath z_0..z_{t-1} (z_0 the pinhole) and one light subpath y_0..y_{s-1} (y_0 on a
 // light) per sample; every pair is connected, which makes the path x_0..x_k = y_0..y_{s-1}
-// z_{t-1}..z_0 of k = s+t-1 segments with the strategy the slides call p_{k,s} ("m vertices
-// from the light"): s = 0 the camera path hits an emitter, s = 1 next event, t = 1 light
-// tracing, the rest "connect paths deterministically (every pair of two hit points)". Each
-// strategy alone is unbiased for the paths it can make; MIS combines them: C = sum w_ij C_ij.
-//
-// The weights are computed pbrt-style: every vertex stores pdfFwd, the area density with which
-// its own subpath sampled it, and pdfRev, the density with which the other side would have. On
-// the path x_0..x_k (x_0 on the light), strategy s samples x_0..x_{s-1} from the light and
-// x_s..x_k from the camera; strategy s+1 differs only in x_s, which changes sides:
-//     p_{s+1}/p_s = pdfRev(x_s) / pdfFwd(x_s),   (x_s's own subpath sampled it with pdfFwd)
-// and likewise p_{s-1}/p_s = pdfRev(x_{s-1}) / pdfFwd(x_{s-1}) on the light side. So
-// r_i = p_i/p_s costs one multiplication per vertex, and a heuristic maps the r_i to w_s:
+// z_{t-1}..z_0 of k = s+t-1 segments with the strategy the slides call p_{k,s} ("m vertices from
+// the light"): s = 0 the camera path hits an emitter, s = 1 next event, t = 1 light tracing, the
+// rest "connect paths deterministically (every pair of two hit points)". Each strategy alone is
+// unbiased for the paths it can make; MIS combines them: C = sum w_ij C_ij.
+// The weights, pbrt-style: every vertex stores pdfFwd, the area density with which its own
+// subpath sampled it, and pdfRev, the density with which the other side would have. Strategy s
+// samples x_0..x_{s-1} from the light and x_s..x_k from the camera; strategy s+1 differs only in
+// x_s, which changes sides:
+//     p_{s+1}/p_s = pdfRev(x_s) / pdfFwd(x_s),   and likewise on the light side,
+// so r_i = p_i/p_s costs one multiplication per vertex, and a heuristic maps the r_i to w_s:
 //     balance w_s = 1/(1 + sum r_i)   power w_s = 1/(1 + sum r_i^2)   (Veach ch. 9)
 //     max     w_s = 1 if no r_i > 1   (the slides' "choose p_X(pi) maximum"; ties, to 1e-4, share)
 //     uniform w_s = 1/(1 + #{r_i > 0})   (every strategy able to make the path, equally)
-// Each factor of the walk is a density one can point at on the slide, and one walk serves all
-// four heuristics and vcm's merges (section (g): one more term per vertex). Its O(k) per
-// connection is a few percent of a sample, whose cost is its rays; SmallVCM's recursion, which
-// caches the part of the walk beyond the connection in each subpath, is page 10's exercise.
-// A strategy that would have to connect at a delta vertex (mirror, glass) or hit a point light is
-// skipped: its density is 0 (counting it gave single huge fireflies in Mitsuba #132, pbrt-v4 #326
-// and SmallVCM #5). Every other strategy crosses a specular vertex x_j inside one subpath,
-// sampling x_{j+1} from x_j or x_{j-1} from x_j: the delta cancels between strategies, the
-// geometry around it does not. The delta is one in the measure eta^2 |cos| d omega, which
-// mirrors and Snell's law keep (etendue), the same whichever way a strategy crosses x_j; left in
-// pdfFwd and pdfRev are eta^2 |cos| at x_j (specularDensity) and the |cos|/d^2 of the conversion
-// to area at the next vertex. Through a chain a S..S b between non-specular a and b the chain's
-// Jacobians cancel too, and the two directions' densities stand as
+// One walk serves all four heuristics and vcm's merges (section 8: one more term per vertex); its
+// O(k) per connection is a few percent of a sample, whose cost is its rays (SmallVCM's cached
+// recursion is page 10's exercise).
+// A strategy that would connect at a delta vertex (mirror, glass) or hit a point light has density
+// 0 and is skipped (counting it gave single huge fireflies in Mitsuba #132, pbrt-v4 #326, SmallVCM
+// #5). Every other strategy crosses a specular vertex x_j inside one subpath: the delta cancels
+// between strategies, the geometry around it does not. The delta is one in the measure
+// eta^2 |cos| d omega, which mirrors and Snell's law keep (etendue) whichever way x_j is crossed;
+// left in pdfFwd and pdfRev are eta^2 |cos| at x_j (specularDensity) and the |cos|/d^2 of the
+// conversion to area at the next vertex. Through a chain a S..S b the chain's Jacobians cancel too:
 //     p(a ... b) / p(b ... a) = [p_omega(a) / (eta_a^2 |cos_a|)] / [p_omega(b) / (eta_b^2 |cos_b|)].
-// pbrt stores the density after a delta event as an area density of 1 (--delta-density-one
-// restores it), which drops the |cos|/d^2 at the vertex after it: for a caustic on a floor
-// millimetres below a glass ball that 1/d^2 is huge, and pbrt's convention hands the caustic to
-// the noisy s = 0 instead of light tracing (notes, page 10M; tests `specular chains` and `a caustic
-// seen directly`). The walk is in double: near corners, with sharp lobes, one density can be
-// 1e-31 and another 1e+8, beyond float's range.
-// Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues
-// from a surface vertex with q = the material's albedo (albedoContinuation), so every density
-// sampled there, pdfFwd of the next vertex and pdfRev of the one before, carries that q, and the
-// strategy whose subpath survived more roulette gets less weight. A throughput-relative q (pt's)
-// cannot be counted so: the other subpath's q at a vertex depends on its unknown throughput.
-// Appendix A compares the three rules (`build/efficiency --alternatives`): albedo roulette costs
-// least per sample and is the most efficient on every scene there.
+// pbrt stores the density after a delta event as 1 (--delta-density-one), dropping that |cos|/d^2:
+// for a caustic millimetres below a glass ball it is huge, and pbrt's convention hands the caustic
+// to the noisy s = 0 instead of light tracing (notes, page 10M). The walk is in double: near
+// corners, with sharp lobes, one density can be 1e-31 and another 1e+8.
+// Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues from
+// a surface vertex with q = its albedo (albedoContinuation), so both densities sampled there carry
+// q, and the strategy whose subpath survived more roulette gets less weight. A throughput-relative
+// q (pt's) cannot be counted so: the other subpath's q depends on its unknown throughput. Appendix
+// A compares the three rules: albedo roulette costs least per sample and is the most efficient.
 // A subpath, or the first vertices of one: bdpt's own vectors, and vcm's light subpaths, which
 // lie one after another in arrays shared by the whole pass.
 struct Subpath {
@@ -1918,7 +1883,7 @@ inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta
 inline float misWeight(const Scene& scene, Subpath light, int s, Subpath camera, int t, Heuristic heuristic, const Connection& c,
                        double mergeEta) {
     if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
-    CostScope cost(Cost::Mis);
+    PROFILE_PART(Mis);
     MisSum m{heuristic};
     m.add(1);  // (s,t) itself
     misWalk(light, s, camera, t, mergeEta, connectionJunction(scene, light, s, camera, t, c), 1, m);
@@ -1948,68 +1913,58 @@ inline Vec3 connectStrategy(const Scene& scene, Subpath light, int s, Subpath ca
     return isBlack(contribution) || !mutuallyVisible(scene, qs, pt) ? Vec3(0) : contribution;
 }
 
-// Per-strategy images (--strategies): strategy (s,t) with path length k = s+t-1 <= maxLength,
-// then (vcm) one image per path length of all its merges.
-inline int strategyIndex(int s, int t) {  // rows by k, s = 0..k within a row
-    int k = s + t - 1;
-    return k * (k + 1) / 2 - 1 + s;
-}
-inline int mergeImageIndex(int k, int maxLength) { return maxLength * (maxLength + 3) / 2 + k - 1; }
-inline int strategyImageCount(const RenderOptions& opt) {  // vcm: one merge image per length
-    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
-    return opt.method == Method::VCM ? mergeImageIndex(L + 1, L) : L * (L + 3) / 2;
-}
-
 // The light subpath of pixel `pixel` in pass `pass`: a stream of its own, apart from the pixel's
 // camera stream, so that vcm, which traces all light subpaths of a pass first, makes the same
 // ones as bdpt (--radius 0 gives bdpt's image bit for bit).
-inline Rng lightPathRng(const RenderOptions& opt, int pixel, int pass) {
+inline Rng lightPathRng(const SampleOptions& opt, int pixel, int pass) {
     return sampleRng(opt, 0x3c6ef372fe94f82bULL, uint64_t(pixel), uint64_t(pass));
 }
 
 // Every connection (s,t) of one camera subpath with one light subpath, MIS-weighted: bdpt's
 // estimate, and the connection half of vcm's (whose merges, mergeEta > 0, share the weights).
-inline Vec3 connectSubpaths(const Scene& scene, const RenderOptions& opt, Subpath light, const std::vector<PathVertex>& camera,
-                            int here, double mergeEta, RowOutput& out) {
+// Each strategy's own contribution is recorded up to path length opt.strategyMaxLength.
+inline Vec3 connectSubpaths(const Scene& scene, const SampleOptions& opt, Subpath light, const std::vector<PathVertex>& camera,
+                            int ownPixel, double mergeEta, RowOutput& out) {
     Vec3 L(0);
     for (int t = 1; t <= int(camera.size()); ++t)
         for (int s = 0; s <= light.size(); ++s) {
             int bounces = s + t - 2;
             if (bounces < opt.minDepth || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
-            bool record = opt.strategyMaxLength > 0 && s + t - 1 <= opt.strategyMaxLength;
+            bool record = s + t - 1 <= opt.strategyMaxLength;
             if (s == 1 && t == 1 && !record) continue;  // weight 0 (misWeight): spare its shadow ray
-            int pixel = here;
+            int pixel = ownPixel;
             Connection connection;
             Vec3 c = connectStrategy(scene, light, s, camera, t, connection, pixel);
             if (isBlack(c)) continue;
             float w = misWeight(scene, light, s, camera, t, opt.heuristic, connection, mergeEta);
             if (t == 1) out.splats.push_back({pixel, c * w});
             else L += c * w;
-            if (record) {
-                int k = strategyIndex(s, t);
-                out.strategySplats.push_back({pixel, c, 2 * k});
-                out.strategySplats.push_back({pixel, c * w, 2 * k + 1});
-            }
+            if (record) out.strategySplats.push_back({pixel, c, w, s, t});
         }
     return L;
 }
 
-// One bdpt sample: a camera subpath through (filmX, filmY) in pixel `here`, a light subpath, and
-// all their connections (pssmlt, section (h), evaluates its states with it).
-inline Vec3 bdptSample(const Scene& scene, const RenderOptions& opt, float filmX, float filmY, int here, Rng& cameraRng,
+// One bdpt sample: a camera subpath through (filmX, filmY) in pixel `ownPixel`, a light subpath, and
+// all their connections (pssmlt, section 8 (h), evaluates its states with it).
+inline Vec3 bdptSample(const Scene& scene, const SampleOptions& opt, float filmX, float filmY, int ownPixel, Rng& cameraRng,
                        Rng& lightRng, RowOutput& out) {
     thread_local std::vector<PathVertex> camera, light;
     cameraSubpath(scene, opt, filmX, filmY, cameraRng, camera);
     lightSubpath(scene, opt, lightRng, light);
-    return connectSubpaths(scene, opt, light, camera, here, 0, out);
+    return connectSubpaths(scene, opt, light, camera, ownPixel, 0, out);
 }
 
-inline Vec3 sampleBDPT(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
+inline Vec3 sampleBDPT(const Scene& scene, const SampleOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
     FilmPoint f = jitteredFilmPoint(x, y, rng);
-    int here = y * scene.camera.width + x;
-    Rng lightRng = lightPathRng(opt, here, pass.pass);
-    return bdptSample(scene, opt, f.x, f.y, here, rng, lightRng, out);
+    int ownPixel = y * scene.camera.width + x;
+    Rng lightRng = lightPathRng(opt, ownPixel, pass.pass);
+    return bdptSample(scene, opt, f.x, f.y, ownPixel, rng, lightRng, out);
 }
+
+// == 8. Later: vertex merging and Metropolis ==================================================
+// The slides' methods (a)-(f) end here. The slides name two more for "later": (g) "Vertex
+// Connection and Merging (VCM, later)" and (h) "Metropolis-Sampling [Veach '97] (see later)".
+// Both reuse section 7's subpaths, connections and MIS walk; notes pages 15-17 teach them.
 
 // -- (g) vcm: "Vertex Connection and Merging (VCM, later)" (Georgiev, Krivanek, Davidovic and
 // Slusallek 2012; Hachisuka, Pantaleoni and Jensen 2012). Panel (f)'s limit: a connection needs
@@ -2121,16 +2076,6 @@ struct VcmPass {
     };
     std::vector<Stored> stored;           // in the grid's bucket order
     HashGrid grid;
-    size_t bytes() const {  // what the light vertices and the grid take
-        size_t b = 0;
-        for (const std::vector<PathVertex>& row : rowVertices) b += row.capacity() * sizeof(PathVertex);
-        return b + paths.capacity() * sizeof(Subpath) + stored.capacity() * sizeof(Stored) + grid.bucketStart.capacity() * sizeof(uint32_t);
-    }
-    size_t vertexCount() const {
-        size_t n = 0;
-        for (const std::vector<PathVertex>& row : rowVertices) n += row.size();
-        return n;
-    }
 };
 
 // r_0 when --radius is not given: one pixel's footprint where the central camera ray meets the
@@ -2154,12 +2099,12 @@ inline float defaultMergeRadius(const Scene& scene) {
     return (distance > 0 ? distance : 1) * 2 * cam.tanHalfFov / cam.height;
 }
 
-inline float mergeRadius(const Scene& scene, const RenderOptions& opt, int pass) {  // r(n) = r_0 n^((alpha-1)/2), n = pass + 1
+inline float mergeRadius(const Scene& scene, const SampleOptions& opt, int pass) {  // r(n) = r_0 n^((alpha-1)/2), n = pass + 1
     float r0 = opt.mergeRadius >= 0 ? opt.mergeRadius : defaultMergeRadius(scene);
     return r0 * std::pow(float(pass + 1), (opt.alpha - 1) / 2);
 }
 
-inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, VcmPass& vp, RayCount& rays) {
+inline void traceVcmLightPass(const Scene& scene, const SampleOptions& opt, int pass, int threads, VcmPass& vp) {
     const int W = scene.camera.width, H = scene.camera.height;
     vp.radius = mergeRadius(scene, opt, pass);
     vp.mergeEta = double(kPi) * vp.radius * vp.radius * double(W) * H;
@@ -2167,7 +2112,7 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
     // grow, and then to the size asked): growing by doubling would leave a third of it unused.
     vp.rowVertices.resize(H);
     std::vector<std::vector<int>> rowLengths(H);
-    RayCount traced = parallelRows(H, threads, [&](int y, bool) {
+    parallelRows(H, threads, [&](int y) {
         thread_local std::vector<PathVertex> path, row;
         row.clear();
         for (int x = 0; x < W; ++x) {
@@ -2178,8 +2123,7 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
         }
         vp.rowVertices[y].assign(row.begin(), row.end());
     });
-    rays += traced;
-    CostScope cost(Cost::Merging);  // what bdpt does not: keeping the subpaths, the grid
+    PROFILE_PART(Merging);  // what bdpt does not: keeping the subpaths, the grid
     vp.paths.clear();
     vp.stored.clear();
     std::vector<VcmPass::Stored> mergeable;  // in path order, then (stored) in the grid's
@@ -2212,7 +2156,7 @@ inline void traceVcmLightPass(const Scene& scene, const RenderOptions& opt, int 
 // only y lies on the sampled direction, and y's geometry is kept.
 inline float mergeWeight(const Scene& scene, Subpath light, int j, Subpath camera, int t, Heuristic heuristic, double mergeEta, float pdf,
                          float pdfReverse) {
-    CostScope cost(Cost::Mis);
+    PROFILE_PART(Mis);
     const PathVertex &x = camera[t - 1], &y = light[j], &qs = light[j - 1];
     Junction jn;
     double self = mergeEta * y.pdfFwd;  // p_merge / p_{j,t}
@@ -2240,10 +2184,10 @@ inline float mergeWeight(const Scene& scene, Subpath light, int j, Subpath camer
 // are found first and their light vertices asked for at once, so that their cache misses
 // overlap: each then reads its vertex y and the ones before it (the walk) from memory already
 // on its way.
-inline Vec3 mergeCameraVertices(const Scene& scene, const RenderOptions& opt, const VcmPass& vp, const std::vector<PathVertex>& camera,
-                                int here, RowOutput& out) {
+inline Vec3 mergeCameraVertices(const Scene& scene, const SampleOptions& opt, const VcmPass& vp, const std::vector<PathVertex>& camera,
+                                int ownPixel, RowOutput& out) {
     thread_local std::vector<const VcmPass::Stored*> found;
-    CostScope cost(Cost::Merging);
+    PROFILE_PART(Merging);
     Vec3 L(0);
     for (int t = 2; t <= int(camera.size()); ++t) {
         const PathVertex& x = camera[t - 1];
@@ -2267,72 +2211,56 @@ inline Vec3 mergeCameraVertices(const Scene& scene, const RenderOptions& opt, co
             float w = mergeWeight(scene, light, int(merge->index), camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
             L += c * w;
             int k = int(merge->index) + t - 1;  // path length: index + 1 light vertices, t camera, one shared
-            if (opt.strategyMaxLength > 0 && k <= opt.strategyMaxLength) {
-                int image = mergeImageIndex(k, opt.strategyMaxLength);
-                out.strategySplats.push_back({here, c, 2 * image});
-                out.strategySplats.push_back({here, c * w, 2 * image + 1});
-            }
+            if (k <= opt.strategyMaxLength) out.strategySplats.push_back({ownPixel, c, w, int(merge->index), t, true});
         }
     }
     return L;
 }
 
-inline Vec3 sampleVCM(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
+inline Vec3 sampleVCM(const Scene& scene, const SampleOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
     thread_local std::vector<PathVertex> camera;
     const VcmPass& vp = *pass.vcm;
     FilmPoint f = jitteredFilmPoint(x, y, rng);
     cameraSubpath(scene, opt, f.x, f.y, rng, camera);
-    int here = y * scene.camera.width + x;
-    Vec3 L = connectSubpaths(scene, opt, vp.paths[here], camera, here, vp.mergeEta, out);
-    return vp.mergeEta > 0 ? L + mergeCameraVertices(scene, opt, vp, camera, here, out) : L;
+    int ownPixel = y * scene.camera.width + x;
+    Vec3 L = connectSubpaths(scene, opt, vp.paths[ownPixel], camera, ownPixel, vp.mergeEta, out);
+    return vp.mergeEta > 0 ? L + mergeCameraVertices(scene, opt, vp, camera, ownPixel, out) : L;
 }
 
 // -- (h) "Metropolis-Sampling [Veach '97] (see later): random variation and mutations of
 // bidirectional paths; very well suited for very complex light paths; unbiased but relatively
-// complex algorithms; uneven convergence". Three methods: pssmlt and mmlt here mutate the random
-// numbers of a sample, mlt (below) the path itself, as the slide says.
-// pssmlt: primary-sample-space MLT (Kelemen, Szirmay-Kalos, Antal and Csonka 2002) over bdpt's
-// own sample. A state u is the list of uniform numbers one bdpt
-// sample draws (section 1: every number passes Rng::uniform), kept in three streams so that a
-// number keeps its meaning when the other subpath changes length: the camera subpath's (the film
-// position first), the light subpath's and (mmlt) the strategy's. The sample's MIS-weighted
-// contributions h_j(u) to pixels j (t = 1 lands anywhere) give the image as an integral over u,
+// complex algorithms; uneven convergence". pssmlt and mmlt mutate the random numbers of a sample,
+// mlt (below) the path itself, as the slide says.
+// pssmlt: primary-sample-space MLT (Kelemen, Szirmay-Kalos, Antal and Csonka 2002) over bdpt's own
+// sample. A state u is the list of uniform numbers one bdpt sample draws (section 1: every number
+// passes Rng::uniform), in three streams so that a number keeps its meaning when the other subpath
+// changes length: the camera subpath's (film position first), the light subpath's and (mmlt) the
+// strategy's. The sample's MIS-weighted contributions h_j(u) to pixels j give the image,
 //     I_j = W H  integral h_j(u) du      (the sample's pixel is one of W H, chosen by u),
-// and Metropolis draws states with density f(u)/b, f = luminance of sum_j h_j(u) (how bright the
-// sample is), b = integral f(u) du, so that
+// and Metropolis draws states with density f(u)/b, f = luminance of sum_j h_j(u), b = integral f:
 //     I_j = W H b E_{f/b}[ h_j / f ]:   each of the W H x spp mutations adds b h_j / f / spp.
 // A step proposes v from u with a symmetric T(u->v) = T(v->u) and accepts it with
 //     a(u->v) = min(1, f(v) T(v->u) / (f(u) T(u->v))) = min(1, f(v) / f(u)),
 // which gives detailed balance, f(u) T(u->v) a(u->v) = f(v) T(v->u) a(v->u): states distributed
-// as f/b stay so. Two kinds of steps (Kelemen):
-//   large (probability --large-step): every number afresh, v independent of u: finds new paths;
-//   small: each number moved by a normal of deviation --sigma, wrapped into [0,1): "random
-//   variation and mutations" of a path that carries light, exploring around it.
-// A number a state never drew is drawn afresh when first used (a longer path than before).
+// as f/b stay so. Kelemen's two steps: large (probability --large-step), every number afresh,
+// finds new paths; small, each number moved by a normal of deviation --sigma (wrapped into [0,1)),
+// explores around a path that carries light. A number a state never drew is drawn when first used.
 // Expected-value splats (Veach 1997, 11.5): the proposal adds a h(v)/f(v) and the current state
-// (1-a) h(u)/f(u), whichever wins, so a rejected proposal still counts; the current state's
-// share is added once, when it is left.
-// Start-up bias: a chain started anywhere is distributed as f/b only after a while (forever, in
-// a region it cannot leave). A bootstrap of --bootstrap independent samples estimates b (their
-// mean f, zeros included), and each chain starts from one of them chosen in proportion to f,
-// which is distributed as f/b already (--fixed-start, the deliberate mistake: one fixed state).
-// Already, that is, as far as the bootstrap saw every kind of path: a bright family it missed
-// gets no chain until a large step finds it, and its light is short until then.
-// A large step's proposal is an independent uniform state too (Kelemen's estimate of b): each
-// pass pools them into b for the next, so that b's error, which scales the whole image, keeps
-// falling (with the bootstrap's b alone the error stops falling at b's error). The price is a
-// bias of order 1/N from the dependence between b and the chains, far below the noise (test
-// `mlt, pssmlt and mmlt agree with the references ...`).
-// --chains chains, each its own random stream: a pass gives each its share of W H mutations,
-// and their splats are added in chain order, so the image does not depend on --threads.
-// mmlt (Hachisuka, Kaplanyan and Dachsbacher 2014; pbrt's MLT): the state also holds a path
-// length k and, by the strategy stream's number, one strategy s of the k+1 that make it; its
-// contribution is (k+1) w_{s,t} C_{s,t} (t = k+1-s): one connection per sample, weighted by bdpt's
-// MIS, so the chain spends its mutations where the strategy that carries the path does. A chain
-// keeps the k it starts with; each length gets chains in proportion to its b_k (the integral of
-// f over paths of length k), and its chains' splats are scaled by b_k over their mutations, so
-// that each length's share of the image is its own estimate, not the luck of its chain count.
-// Its subpaths have exactly the lengths the state chose: no roulette (it would only end some).
+// (1-a) h(u)/f(u), whichever wins, so a rejected proposal still counts.
+// Start-up bias: a chain started anywhere follows f/b only after a while. A bootstrap of
+// --bootstrap independent samples estimates b (their mean f), and each chain starts from one of
+// them chosen in proportion to f, which follows f/b already, as far as the bootstrap saw every kind
+// of path (--fixed-start, the deliberate mistake: one fixed state). Large steps are independent
+// states too (Kelemen): each pass pools them into b for the next, so that b's error, which scales
+// the whole image, keeps falling, at the price of an O(1/N) bias far below the noise.
+// --chains chains, each its own random stream, share a pass's W H mutations; their splats are
+// added in chain order, so the image does not depend on --threads.
+// mmlt (Hachisuka, Kaplanyan and Dachsbacher 2014; pbrt's MLT): the state also holds a path length
+// k and one strategy s of the k+1 that make it; its contribution is (k+1) w_{s,t} C_{s,t}: one
+// connection per sample, weighted by bdpt's MIS. A chain keeps its k; each length gets chains in
+// proportion to its b_k (f's integral over paths of length k), and its chains' splats are scaled
+// by b_k over their mutations, so that each length's share of the image is its own estimate. Its
+// subpaths have exactly the lengths the state chose: no roulette (it would only end some).
 // One stream of a state: its numbers, replayed in the order the walk asks for them.
 struct PrimaryStream {
     std::vector<float> values;
@@ -2344,7 +2272,7 @@ inline float replayUniform(PrimaryStream& stream) {
     return stream.values[stream.used++];
 }
 
-struct MltState {
+struct PrimarySampleState {
     PrimaryStream camera, light, strategy;
     int length = 0;                    // mmlt: the path length k (segments); pssmlt: 0, every length
     std::vector<Splat> contributions;  // h_j(u)
@@ -2352,7 +2280,7 @@ struct MltState {
 };
 
 // mmlt's sample: strategy (s, t = k+1-s) alone, its subpaths exactly s and t vertices long.
-inline Vec3 strategySample(const Scene& scene, const RenderOptions& opt, int k, int s, float filmX, float filmY, int here,
+inline Vec3 strategySample(const Scene& scene, const SampleOptions& opt, int k, int s, float filmX, float filmY, int ownPixel,
                            Rng& cameraRng, Rng& lightRng, int& pixel) {
     thread_local std::vector<PathVertex> camera, light;
     int t = k + 1 - s;
@@ -2361,36 +2289,39 @@ inline Vec3 strategySample(const Scene& scene, const RenderOptions& opt, int k, 
     if (s > 0) lightSubpath(scene, opt, lightRng, light, s);
     if (int(camera.size()) != t || int(light.size()) != s) return Vec3(0);  // ended early (roulette, escape)
     Connection c;
-    pixel = here;
+    pixel = ownPixel;
     Vec3 C = connectStrategy(scene, light, s, camera, t, c, pixel);
     if (isBlack(C)) return Vec3(0);
     return C * misWeight(scene, light, s, camera, t, opt.heuristic, c, 0) * float(k + 1);
 }
 
+// A generator that replays a state's stream from its start and draws the numbers it never drew
+// from `fresh` (which the state then keeps): Kelemen's "replay u, draw the rest afresh".
+inline Rng replaying(PrimaryStream& stream, Rng& fresh) {
+    Rng rng;
+    rng.replay = &stream;
+    stream.used = 0;
+    stream.fresh = &fresh;
+    return rng;
+}
+
 // h(u) and f(u) of state u; numbers it has not drawn yet come from the three fresh streams.
-inline void evaluateState(const Scene& scene, const RenderOptions& opt, MltState& u, Rng& cameraFresh, Rng& lightFresh,
+inline void evaluateState(const Scene& scene, const SampleOptions& opt, PrimarySampleState& u, Rng& cameraFresh, Rng& lightFresh,
                           Rng& strategyFresh) {
-    Rng cameraRng, lightRng, strategyRng;
-    for (auto [rng, stream, fresh] : {std::make_tuple(&cameraRng, &u.camera, &cameraFresh), std::make_tuple(&lightRng, &u.light, &lightFresh),
-                                      std::make_tuple(&strategyRng, &u.strategy, &strategyFresh)}) {
-        rng->replay = stream;
-        stream->used = 0;
-        stream->fresh = fresh;
-    }
-    const int W = scene.camera.width, H = scene.camera.height;
-    float fx = cameraRng.uniform() * W, fy = cameraRng.uniform() * H;
-    int x = std::min(int(fx), W - 1), y = std::min(int(fy), H - 1), here = y * W + x;
-    float filmX = filmCoordinate(x, fx - x), filmY = filmCoordinate(y, fy - y);
+    Rng cameraRng = replaying(u.camera, cameraFresh), lightRng = replaying(u.light, lightFresh);
+    Rng strategyRng = replaying(u.strategy, strategyFresh);
+    FilmPoint film = uniformFilmPoint(scene.camera, cameraRng);
+    const int ownPixel = pixelAt(scene.camera, film);
     u.contributions.clear();
     if (opt.method == Method::PSSMLT) {
         thread_local RowOutput out;
         out.splats.clear();
-        Vec3 L = bdptSample(scene, opt, filmX, filmY, here, cameraRng, lightRng, out);
+        Vec3 L = bdptSample(scene, opt, film.x, film.y, ownPixel, cameraRng, lightRng, out);
         u.contributions.swap(out.splats);
-        u.contributions.push_back({here, L});
+        u.contributions.push_back({ownPixel, L});
     } else {
         int s = std::min(int(strategyRng.uniform() * float(u.length + 1)), u.length), pixel = -1;
-        Vec3 C = strategySample(scene, opt, u.length, s, filmX, filmY, here, cameraRng, lightRng, pixel);
+        Vec3 C = strategySample(scene, opt, u.length, s, film.x, film.y, ownPixel, cameraRng, lightRng, pixel);
         if (pixel >= 0) u.contributions.push_back({pixel, C});
     }
     u.f = 0;
@@ -2407,15 +2338,15 @@ struct FSum {
     void add(const FSum& o) { sum += o.sum, sumSquares += o.sumSquares, count += o.count; }
 };
 
-struct MltChain {
+struct PrimarySampleChain {
     Rng rng;                   // its steps, acceptances and fresh numbers
-    MltState current, proposal;
+    PrimarySampleState current, proposal;
     double currentWeight = 0;  // the current state's expected-value splats not yet added
     long long accepted = 0, proposed = 0;
     FSum largeSteps;           // this pass's large-step proposals (for b)
 };
 
-inline float mltAcceptance(float fCurrent, float fProposal) { return fProposal > 0 ? std::min(1.0f, fProposal / fCurrent) : 0.0f; }
+inline float symmetricAcceptance(float fCurrent, float fProposal) { return fProposal > 0 ? std::min(1.0f, fProposal / fCurrent) : 0.0f; }
 
 // A small step of one number: symmetric in v and the result, wrapped into [0,1), never 1.
 inline float smallStep(float v, float step) {
@@ -2431,8 +2362,8 @@ inline void standardNormals(Rng& rng, float& a, float& b) {
     b = r * std::sin(phi);
 }
 
-inline bool proposeStep(const RenderOptions& opt, MltChain& chain) {
-    MltState &v = chain.proposal, &u = chain.current;
+inline bool proposeStep(const SampleOptions& opt, PrimarySampleChain& chain) {
+    PrimarySampleState &v = chain.proposal, &u = chain.current;
     v.length = u.length;
     v.camera.values = u.camera.values;
     v.light.values = u.light.values;
@@ -2470,10 +2401,10 @@ inline void splatAndAccept(Chain& chain, double a, const SplatState& splat) {
 
 // One Metropolis step of a chain whose current state has f > 0: propose, evaluate, splat the
 // expected values through splat(state, weight), accept with probability a. `accept` is
-// mltAcceptance (a test passes others, to see them fail).
+// symmetricAcceptance (a test passes others, to see them fail).
 template <class Evaluate, class SplatState>
-inline void metropolisStep(const RenderOptions& opt, MltChain& chain, const Evaluate& evaluate, const SplatState& splat,
-                           float (*accept)(float, float) = mltAcceptance) {
+inline void metropolisStep(const SampleOptions& opt, PrimarySampleChain& chain, const Evaluate& evaluate, const SplatState& splat,
+                           float (*accept)(float, float) = symmetricAcceptance) {
     bool large = proposeStep(opt, chain);
     evaluate(chain.proposal);
     if (large) chain.largeSteps.add(chain.proposal.f);
@@ -2487,7 +2418,7 @@ inline void metropolisStep(const RenderOptions& opt, MltChain& chain, const Eval
 // keeps its crossing while the chain varies the rest, where pssmlt's large and small steps re-roll
 // the whole path and must find the gap again (notes, page 17).
 // The target is f(x), the path's measurement contribution (its luminance, in the units of a
-// pixel's share, section 8): with bdpt's pieces, f(x) = C_{s,t}(x) p_{s,t}(x) for any strategy
+// pixel's share, section 9): with bdpt's pieces, f(x) = C_{s,t}(x) p_{s,t}(x) for any strategy
 // (s,t) able to make x, C its unweighted contribution, p_{s,t} the product of its area densities
 // (mirrors and glass in the measure of bdpt's banner, so that the deltas of f and p cancel).
 // A proposal y, made from x with the tentative transition density T(y|x), is accepted with
@@ -2524,7 +2455,7 @@ inline void metropolisStep(const RenderOptions& opt, MltChain& chain, const Eval
 // sampled from x_{i-1} (the light side; pL[0] the light point's) and from x_{i+1} (the camera
 // side; 0 at a point light, which nothing hits); lobe[i] is the probability of the lobe the path
 // took at a glass vertex (1 elsewhere).
-struct ChainPath {
+struct MutatedPath {
     std::vector<PathVertex> x;
     std::vector<double> pL, pE, lobe;
     Vec3 colour;   // f's colour, of luminance 1
@@ -2582,16 +2513,14 @@ inline void subpathThrough(const Scene& scene, const std::vector<PathVertex>& x,
 // Extends a subpath by exactly n vertices sampled from its last one (a new film point from the
 // pinhole, a direction from a light point, a BSDF sample from a surface); false if the walk ends
 // sooner.
-inline bool extendSubpath(const Scene& scene, const RenderOptions& walk, std::vector<PathVertex>& path, int n, Transport mode, Rng& rng) {
+inline bool extendSubpath(const Scene& scene, const SampleOptions& walk, std::vector<PathVertex>& path, int n, Transport mode, Rng& rng) {
     if (n == 0) return true;
     PathVertex& v = path.back();
     Ray ray;
     Vec3 beta;
     if (v.type == PathVertex::Camera) {
-        const Camera& cam = scene.camera;
-        float fx = rng.uniform() * cam.width, fy = rng.uniform() * cam.height;
-        int px = std::min(int(fx), cam.width - 1), py = std::min(int(fy), cam.height - 1);
-        ray = cameraRay(cam, filmCoordinate(px, fx - px), filmCoordinate(py, fy - py));
+        FilmPoint film = uniformFilmPoint(scene.camera, rng);
+        ray = cameraRay(scene.camera, film.x, film.y);
         beta = Vec3(1);
     } else if (v.type == PathVertex::Light) {
         EmissionSample es;
@@ -2625,7 +2554,7 @@ inline int pixelOf(const Camera& cam, Vec3 p) {
 // The path strategy (s,t) makes of light[0..s-1] and camera[0..t-1], with f, its pixel and the
 // densities of its vertices seen from both sides (the ones misWalk reads); false if it carries
 // nothing or leaves the image.
-inline bool joinPath(const Scene& scene, Subpath light, int s, Subpath camera, int t, ChainPath& y) {
+inline bool joinPath(const Scene& scene, Subpath light, int s, Subpath camera, int t, MutatedPath& y) {
     Connection c;
     int pixel = -1;
     Vec3 C = connectStrategy(scene, light, s, camera, t, c, pixel);
@@ -2701,13 +2630,13 @@ inline double additionProbability(int ka, int kd, int k, LengthRange r) {
 // Where the deletion may start: x_{a-1} and x_b (b = a+kd-1) are kept and must not be mirrors or
 // glass (a walk or a connection starts there); a = 0 deletes the light point, which then needs
 // a new one (ka > 1) and cannot take an insertion before it (kd > 1).
-inline bool deletionAllowed(const Scene& scene, const ChainPath& x, int a, int kd, int ka) {
+inline bool deletionAllowed(const Scene& scene, const MutatedPath& x, int a, int kd, int ka) {
     int b = a + kd - 1;
     if (a < 0 || b > x.k()) return false;
     if (a == 0) return kd > 1 && ka > 1 && connectable(scene, x.x[b]);
     return connectable(scene, x.x[a - 1]) && connectable(scene, x.x[b]);
 }
-inline int deletionPlaces(const Scene& scene, const ChainPath& x, int kd, int ka) {
+inline int deletionPlaces(const Scene& scene, const MutatedPath& x, int kd, int ka) {
     int n = 0;
     for (int a = 0; a + kd - 1 <= x.k(); ++a) n += deletionAllowed(scene, x, a, kd, ka);
     return n;
@@ -2715,7 +2644,7 @@ inline int deletionPlaces(const Scene& scene, const ChainPath& x, int kd, int ka
 
 // T's density of the n vertices x_a..x_{a+n-1} of y over the splits that could have made them,
 // their glass lobes included: sum_s prod_{i<a+s} pL[i] prod_{i>=a+s} pE[i].
-inline double splitDensitySum(const Scene& scene, const ChainPath& y, int a, int n) {
+inline double splitDensitySum(const Scene& scene, const MutatedPath& y, int a, int n) {
     double sum = 0;
     for (int s = 0; s <= n; ++s) {
         int lightEnd = a + s - 1, cameraEnd = a + s;  // the connection (lightEnd -1: the camera walk found the light)
@@ -2731,13 +2660,13 @@ inline double splitDensitySum(const Scene& scene, const ChainPath& y, int a, int
 // T(y|x) of the bidirectional mutation that replaced x_a..x_{a+kd-2} by y_a..y_{a+ka-2}. A point
 // light is one point: deleting it (a = 0) and drawing the same light again makes the same y as
 // keeping it (a = 1), so T sums both ways.
-inline double deletionDensity(const Scene& scene, const ChainPath& x, const ChainPath& y, int a, int kd, int ka, LengthRange r) {
+inline double deletionDensity(const Scene& scene, const MutatedPath& x, const MutatedPath& y, int a, int kd, int ka, LengthRange r) {
     int places = deletionPlaces(scene, x, kd, ka);
     if (places == 0) return 0;
     return deletionProbability(kd, x.k()) * additionProbability(ka, kd, x.k(), r) / (double(places) * ka) *
            splitDensitySum(scene, y, a, ka - 1);
 }
-inline double bidirectionalDensity(const Scene& scene, const ChainPath& x, const ChainPath& y, int a, int kd, int ka, LengthRange r) {
+inline double bidirectionalDensity(const Scene& scene, const MutatedPath& x, const MutatedPath& y, int a, int kd, int ka, LengthRange r) {
     double T = deletionDensity(scene, x, y, a, kd, ka, r);
     if (a == 1 && x.x[0].deltaPosition) T += deletionDensity(scene, x, y, 0, kd + 1, ka + 1, r);
     return T;
@@ -2758,7 +2687,7 @@ inline int pickIndex(int first, int last, Rng& rng, const Pick& weight) {  // in
 
 // A proposal y and its ratio f(y) T(x|y) / (f(x) T(y|x)); 0: no proposal (a walk ended, the
 // connection is blocked, ...), which the chain counts as a rejection.
-inline double bidirectionalMutation(const Scene& scene, const RenderOptions& walk, LengthRange r, const ChainPath& x, Rng& rng, ChainPath& y) {
+inline double bidirectionalMutation(const Scene& scene, const SampleOptions& walk, LengthRange r, const MutatedPath& x, Rng& rng, MutatedPath& y) {
     thread_local std::vector<PathVertex> light, camera;
     const int k = x.k();
     // Drawn from the unnormalised weights (pickIndex normalises); T uses the probabilities.
@@ -2788,7 +2717,7 @@ inline double bidirectionalMutation(const Scene& scene, const RenderOptions& wal
 // -- The perturbations carry a path through the same mirror and glass lobes it had: from vertex
 // `from` of x (already replaced by `start`, the last of path), the walk along `ray` must meet a
 // specular surface wherever x had one, taking the same lobe, and a non-specular one at `to`.
-inline bool followLobes(const Scene& scene, const ChainPath& x, int from, int to, Ray ray, Transport mode, std::vector<PathVertex>& path) {
+inline bool followLobes(const Scene& scene, const MutatedPath& x, int from, int to, Ray ray, Transport mode, std::vector<PathVertex>& path) {
     int step = to > from ? 1 : -1;
     Vec3 beta = path.back().beta * scatteringWeight(scene, path.back(), ray.d, mode);
     for (int i = from + step;; i += step) {
@@ -2823,13 +2752,13 @@ inline void lensRadii(const Camera& cam, double& r1, double& r2) {
 
 // The lens perturbation applies to paths ending ... D S* E: c, the first non-specular vertex seen
 // from the camera, and the one before it, connectable; -1 if it does not apply.
-inline int lensVertex(const Scene& scene, const ChainPath& x) {
+inline int lensVertex(const Scene& scene, const MutatedPath& x) {
     int c = x.k() - 1;
     while (c > 0 && !connectable(scene, x.x[c])) --c;
     return c >= 1 && connectable(scene, x.x[c]) && connectable(scene, x.x[c - 1]) ? c : -1;
 }
 
-inline double lensPerturbation(const Scene& scene, const ChainPath& x, Rng& rng, ChainPath& y) {
+inline double lensPerturbation(const Scene& scene, const MutatedPath& x, Rng& rng, MutatedPath& y) {
     thread_local std::vector<PathVertex> light, camera;
     const Camera& cam = scene.camera;
     const int k = x.k(), c = lensVertex(scene, x);
@@ -2851,7 +2780,7 @@ inline double lensPerturbation(const Scene& scene, const ChainPath& x, Rng& rng,
 
 // The caustic perturbation applies to paths ending (L|D) S* D E: x_{k-1} connectable, and l the
 // first connectable vertex before it, through mirrors and glass; -1 if it does not apply.
-inline int causticVertex(const Scene& scene, const ChainPath& x) {
+inline int causticVertex(const Scene& scene, const MutatedPath& x) {
     int k = x.k();
     if (k < 2 || !connectable(scene, x.x[k - 1])) return -1;
     int l = k - 2;
@@ -2862,7 +2791,7 @@ inline int causticVertex(const Scene& scene, const ChainPath& x) {
 // Its angles: the lens radii in radians per pixel, scaled by |x_{k-1} x_k| over the length of the
 // caustic's chain x_l..x_{k-1}, so that the film moves by about as many pixels; the density of
 // the angle theta between the old and the new direction, in solid angle.
-inline bool causticAngleRange(const Scene& scene, const ChainPath& x, int l, double& t1, double& t2) {
+inline bool causticAngleRange(const Scene& scene, const MutatedPath& x, int l, double& t1, double& t2) {
     const Camera& cam = scene.camera;
     double chain = 0;
     for (int i = l; i < x.k() - 1; ++i) chain += length(x.x[i + 1].sp.p - x.x[i].sp.p);
@@ -2873,7 +2802,7 @@ inline bool causticAngleRange(const Scene& scene, const ChainPath& x, int l, dou
     t2 = std::min(r2 * perPixel, 0.5 * kPi);
     return t2 > t1;
 }
-inline double causticDensity(const Scene& scene, const ChainPath& x, int l, double theta) {
+inline double causticDensity(const Scene& scene, const MutatedPath& x, int l, double theta) {
     double t1, t2;
     if (!causticAngleRange(scene, x, l, t1, t2) || !(theta >= t1 && theta <= t2)) return 0;
     return 1 / (2 * kPi * std::log(t2 / t1) * theta * std::sin(theta));
@@ -2881,7 +2810,7 @@ inline double causticDensity(const Scene& scene, const ChainPath& x, int l, doub
 
 // T(y|x) of a caustic perturbation: the angle's solid-angle density at x_l, made an area density
 // at y_{l+1}, then the chain's specular densities.
-inline double causticTransition(const Scene& scene, const ChainPath& from, const ChainPath& to, int l) {
+inline double causticTransition(const Scene& scene, const MutatedPath& from, const MutatedPath& to, int l) {
     Vec3 wOld = normalize(from.x[l + 1].sp.p - from.x[l].sp.p), d = to.x[l + 1].sp.p - to.x[l].sp.p;
     double theta = std::acos(std::clamp(double(dot(wOld, normalize(d))), -1.0, 1.0));
     double p = causticDensity(scene, from, l, theta) * cosAt(to.x[l + 1], normalize(d)) / dot(d, d);
@@ -2889,7 +2818,7 @@ inline double causticTransition(const Scene& scene, const ChainPath& from, const
     return p;
 }
 
-inline double causticPerturbation(const Scene& scene, const ChainPath& x, Rng& rng, ChainPath& y) {
+inline double causticPerturbation(const Scene& scene, const MutatedPath& x, Rng& rng, MutatedPath& y) {
     thread_local std::vector<PathVertex> light;
     const int k = x.k(), l = causticVertex(scene, x);
     double t1, t2;
@@ -2910,7 +2839,7 @@ inline double causticPerturbation(const Scene& scene, const ChainPath& x, Rng& r
 // The mutations that apply to x (the bidirectional one always, the only one that changes a
 // path's length or its kind); each is chosen with probability 1/count.
 enum MutationBits { kBidirectional = 1, kLens = 2, kCaustic = 4 };
-inline int applicableMutations(const Scene& scene, const ChainPath& x, int enabled) {
+inline int applicableMutations(const Scene& scene, const MutatedPath& x, int enabled) {
     return (enabled & kBidirectional) | (enabled & kLens && lensVertex(scene, x) >= 0 ? kLens : 0) |
            (enabled & kCaustic && causticVertex(scene, x) >= 0 ? kCaustic : 0);
 }
@@ -2918,7 +2847,7 @@ inline int bitCount(int bits) { return (bits & 1) + (bits >> 1 & 1) + (bits >> 2
 
 // One proposal from x and its acceptance a(y|x), the probability of choosing the mutation
 // included on both sides (it differs where y admits other perturbations than x).
-inline double mutate(const Scene& scene, const RenderOptions& walk, LengthRange r, const ChainPath& x, Rng& rng, ChainPath& y, int* which = nullptr) {
+inline double mutate(const Scene& scene, const SampleOptions& walk, LengthRange r, const MutatedPath& x, Rng& rng, MutatedPath& y, int* which = nullptr) {
     const int applicable = applicableMutations(scene, x, walk.mutations), count = bitCount(applicable);
     if (count == 0) return 0;  // (tests run the perturbations alone)
     int pick = std::min(int(rng.uniform() * count), count - 1), bit = 1;
@@ -2935,7 +2864,7 @@ inline double mutate(const Scene& scene, const RenderOptions& walk, LengthRange 
 // One of mlt's chains: its own random stream, its path and the one proposed from it.
 struct PathChain {
     Rng rng;
-    ChainPath current, proposal;
+    MutatedPath current, proposal;
     double currentWeight = 0;
     long long accepted = 0, proposed = 0;
     long long acceptedBy[3] = {0, 0, 0}, proposedBy[3] = {0, 0, 0};  // per mutation: bidirectional, lens, caustic
@@ -2946,32 +2875,26 @@ struct PathChain {
 // bdpt sample is better. By default a bdpt sample per pixel renders them and the chains render
 // the rest (Veach; pbrt-v2, Mitsuba); --chain-short-paths gives the chains all lengths (the lesson:
 // notes, page 16).
-inline int shortestChainPath(const RenderOptions& opt) { return opt.chainShortPaths ? 1 : 3; }  // segments
+inline int shortestChainPath(const SampleOptions& opt) { return opt.chainShortPaths ? 1 : 3; }  // segments
 
 // The options of the chains' own samples and walks: no path shorter than the above, and for
 // mmlt's fixed-length subpaths and Veach's walks no roulette (their lengths are chosen).
-inline RenderOptions chainOptions(const RenderOptions& opt) {
-    RenderOptions o = opt;
+inline SampleOptions chainOptions(const SampleOptions& opt) {
+    SampleOptions o = opt;
     o.minDepth = shortestChainPath(opt) - 1;
     if (opt.method != Method::PSSMLT) o.roulette = Roulette::Off;
     return o;
 }
 
 // What the Metropolis methods keep from pass to pass.
-struct MltPass {
+struct MetropolisPass {
     double b = 0, bStandardError = 0;  // the estimate of b = integral f this pass uses
     std::vector<FSum> fByLength;       // f of independent states, per path length (pssmlt, mlt: one)
-    std::vector<MltChain> chains;      // pssmlt, mmlt
+    std::vector<PrimarySampleChain> chains;  // pssmlt, mmlt
     std::vector<PathChain> paths;      // mlt
     std::vector<std::vector<Splat>> chainSplats;  // this pass's, per chain
     std::vector<Vec3> image;                      // this pass's: b sum h/f over W H mutations
-    RenderOptions shortPaths;                     // the per-pixel bdpt sample of paths of 1 and 2 segments
-    long long total(long long MltChain::*count, long long PathChain::*pathCount) const {  // accepted or proposed
-        long long n = 0;
-        for (const MltChain& c : chains) n += c.*count;
-        for (const PathChain& c : paths) n += c.*pathCount;
-        return n;
-    }
+    SampleOptions shortPaths;                     // the per-pixel bdpt sample of paths of 1 and 2 segments
     double lengthB(int i) const { return fByLength[i].count > 0 ? fByLength[i].sum / fByLength[i].count : 0; }
 };
 
@@ -2981,23 +2904,32 @@ struct MltPass {
 // each, and a length whose b_k the bootstrap leaves at 0 gets no chain, so no large step ever
 // corrects it: a length whose light one strategy alone finds (sds's lamp seen through glass,
 // s = 0 only) needs tens of thousands of samples to be seen at all (notes, page 17).
-inline int bootstrapSamples(const RenderOptions& opt) {
+inline int bootstrapSamples(const SampleOptions& opt) {
     return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::PSSMLT ? 100000 : 1000000;
 }
 
 // Independent numbers, whatever --sampler: mmlt deals its bootstrap samples out to the path
 // lengths by index, and every L-th point of a Sobol sequence is no longer evenly spread (every
-// second point of the radical inverse lies in [0, 1/2)); its b_k came out 2.4% low in the furnace.
-inline Rng bootstrapRng(const RenderOptions& opt, int sample, int stream) {
+// second point of the radical inverse lies in [0, 1/2)): its b_k would come out low.
+inline Rng bootstrapRng(const SampleOptions& opt, int sample, int stream) {
     return makeRng(opt.seed ^ 0x2545f4914f6cdd1dULL, uint64_t(sample), uint64_t(stream));
 }
+inline Rng chainRng(const SampleOptions& opt, size_t chain) { return makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(chain), 0); }
 
-inline int lengthCount(const RenderOptions& opt) {  // mmlt: one b_k per path length (none: all are short); pssmlt, mlt: one b
+// f of the bootstrap's n samples, f(i) each, on the pass's threads.
+template <class F>
+inline std::vector<double> bootstrapValues(int n, int threads, const F& f) {
+    std::vector<double> values(n);
+    parallelRows(n, threads, [&](int i) { values[i] = f(i); });
+    return values;
+}
+
+inline int lengthCount(const SampleOptions& opt) {  // mmlt: one b_k per path length (none: all are short); pssmlt, mlt: one b
     return opt.method == Method::MMLT ? std::max(0, opt.maxDepth + 2 - shortestChainPath(opt)) : 1;
 }
 
 // Bootstrap sample i (mmlt: of the i-th length, in turn) into u, from its own streams.
-inline void bootstrapSample(const Scene& scene, const RenderOptions& opt, int i, MltState& u) {
+inline void bootstrapSample(const Scene& scene, const SampleOptions& opt, int i, PrimarySampleState& u) {
     Rng camera = bootstrapRng(opt, i, 0), light = bootstrapRng(opt, i, 1), strategy = bootstrapRng(opt, i, 2);
     u.camera.values.clear();
     u.light.values.clear();
@@ -3007,7 +2939,7 @@ inline void bootstrapSample(const Scene& scene, const RenderOptions& opt, int i,
 }
 
 // b = sum over lengths k of the mean f of length k's independent samples, and its standard error.
-inline void estimateB(MltPass& mp) {
+inline void estimateB(MetropolisPass& mp) {
     double b = 0, variance = 0;
     for (size_t k = 0; k < mp.fByLength.size(); ++k) {
         const FSum& s = mp.fByLength[k];
@@ -3021,9 +2953,11 @@ inline void estimateB(MltPass& mp) {
 }
 
 // The chains' lengths (mmlt): chains in proportion to each length's b_k, by largest remainders,
-// so that no length with light is left without one while chains remain. Drawing each chain's
-// length from the bootstrap instead leaves each length's share of the image to chance.
-inline std::vector<int> chainLengths(const MltPass& mp, int chains) {
+// so that no length with light is left without one while chains remain. A length's remainder
+// counts one more while it has no chain (+1 below), so every lit length gets its first chain
+// before any gets a second; once all have one, the rest go by b_k again. Drawing each chain's
+// length from the bootstrap instead would leave each length's share of the image to chance.
+inline std::vector<int> chainLengths(const MetropolisPass& mp, int chains) {
     const int L = int(mp.fByLength.size());
     std::vector<int> count(L, 0);
     std::vector<double> remainder(L, 0);
@@ -3031,7 +2965,7 @@ inline std::vector<int> chainLengths(const MltPass& mp, int chains) {
     for (int k = 0; k < L; ++k) {
         double share = chains * mp.lengthB(k) / mp.b;
         count[k] = int(share);
-        remainder[k] = mp.lengthB(k) > 0 ? share - count[k] + (count[k] == 0) : -1;  // an empty lit length first
+        remainder[k] = mp.lengthB(k) > 0 ? share - count[k] + (count[k] == 0) : -1;  // a lit length without a chain first
         given += count[k];
     }
     for (; given < chains; ++given) {
@@ -3047,30 +2981,27 @@ inline std::vector<int> chainLengths(const MltPass& mp, int chains) {
 }
 
 // A chain's start: entry j of the running sums `cdf` of the bootstrap samples' f, drawn with
-// probability f_j / sum f from u; `pick` is where u fell, u sum f.
+// probability f_j / sum f from u (upper_bound finds the first sum above the pick, so f_j > 0);
+// `pick` is where u fell, u sum f.
 inline int pickInProportion(const std::vector<double>& cdf, float u, double& pick) {
     pick = double(u) * cdf.back();
-    int j = std::min(int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()), int(cdf.size()) - 1);
-    while (j > 0 && cdf[j] == cdf[j - 1]) --j;  // pick fell on the edge of a zero: the sample before holds it
-    return j;
+    return std::min(int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()), int(cdf.size()) - 1);
 }
 // --fixed-start, the deliberate mistake: every chain from the first sample that carries light.
 inline int firstLitSample(const std::vector<double>& f) {
     return int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
 }
 
-// b from --bootstrap samples, and each chain's start: a bootstrap sample (of its length) drawn in
-// proportion to its f.
-inline void startChains(const Scene& scene, const RenderOptions& opt, int threads, MltPass& mp, RayCount& rays) {
+// pssmlt's and mmlt's first pass: b from --bootstrap samples, and each chain's start, a bootstrap
+// sample (of its length) drawn in proportion to its f.
+inline void startPrimarySampleChains(const Scene& scene, const SampleOptions& opt, int threads, MetropolisPass& mp) {
     const int n = bootstrapSamples(opt), lengths = lengthCount(opt);
-    mp.chains.assign(std::max(1, opt.chains), MltChain());
-    mp.chainSplats.assign(mp.chains.size(), {});
+    mp.chains.assign(std::max(1, opt.chains), PrimarySampleChain());
     if (lengths == 0) return;  // --maxdepth leaves the chains no path: b = 0, the image is bdpt's short paths
-    std::vector<double> f(n);
-    rays += parallelRows(n, threads, [&](int i, bool) {
-        thread_local MltState u;
+    std::vector<double> f = bootstrapValues(n, threads, [&](int i) {
+        thread_local PrimarySampleState u;
         bootstrapSample(scene, opt, i, u);
-        f[i] = u.f;
+        return u.f;
     });
     mp.fByLength.assign(lengths, FSum());
     for (int i = 0; i < n; ++i) mp.fByLength[i % lengths].add(f[i]);
@@ -3080,8 +3011,8 @@ inline void startChains(const Scene& scene, const RenderOptions& opt, int thread
     std::vector<std::vector<double>> cdf(lengths);  // per length, over its samples i = k, k + L, ...
     for (int i = 0; i < n; ++i) cdf[i % lengths].push_back((cdf[i % lengths].empty() ? 0 : cdf[i % lengths].back()) + f[i]);
     for (size_t c = 0; c < mp.chains.size(); ++c) {
-        MltChain& chain = mp.chains[c];
-        chain.rng = makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(c), 0);
+        PrimarySampleChain& chain = mp.chains[c];
+        chain.rng = chainRng(opt, c);
         double pick;
         int i = length[c] + pickInProportion(cdf[length[c]], chain.rng.uniform(), pick) * lengths;
         if (opt.fixedStart) i = firstLitSample(f);
@@ -3089,11 +3020,14 @@ inline void startChains(const Scene& scene, const RenderOptions& opt, int thread
     }
 }
 
+inline long long mutationsOfChain(long long N, long long C, long long c) { return N / C + (c < N % C); }
+
 // The pass's image from the chains' splats, added in chain order. Chains of path length k
 // (mmlt) are scaled by b_k N / M_k (M_k their mutations, N = W H), the others by b.
-inline void addChainSplats(MltPass& mp, long long N, const std::vector<int>& lengthOfChain, const std::vector<long long>& mutations) {
+inline void addChainSplats(MetropolisPass& mp, long long N, const std::vector<int>& lengthOfChain) {
+    const long long C = (long long)lengthOfChain.size();
     std::vector<double> scale(mp.fByLength.size(), 0), done(mp.fByLength.size(), 0);
-    for (size_t c = 0; c < lengthOfChain.size(); ++c) done[lengthOfChain[c]] += double(mutations[c]);
+    for (long long c = 0; c < C; ++c) done[lengthOfChain[c]] += double(mutationsOfChain(N, C, c));
     for (size_t k = 0; k < scale.size(); ++k)
         scale[k] = done[k] > 0 ? (scale.size() > 1 ? mp.lengthB(int(k)) : mp.b) * double(N) / done[k] : 0;
     mp.image.assign(size_t(N), Vec3(0));
@@ -3101,37 +3035,51 @@ inline void addChainSplats(MltPass& mp, long long N, const std::vector<int>& len
         for (const Splat& s : mp.chainSplats[c]) mp.image[s.pixel] += s.value * float(scale[lengthOfChain[c]]);
 }
 
-inline long long mutationsOfChain(long long N, long long C, long long c) { return N / C + (c < N % C); }
+// The expected-value splats of a state, weight h/f: a primary-sample state's contributions, or
+// a path's one pixel.
+inline void splatState(const PrimarySampleState& u, double weight, std::vector<Splat>& out) {
+    for (const Splat& h : u.contributions)
+        if (!isBlack(h.value)) out.push_back({h.pixel, h.value * float(weight)});
+}
+inline void splatState(const MutatedPath& x, double weight, std::vector<Splat>& out) {
+    out.push_back({x.pixel, x.colour * float(x.f * weight)});
+}
 
-// One pass of pssmlt or mmlt: W H mutations shared among the chains (one per pixel on average).
-inline void traceMltPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, MltPass& mp, RayCount& rays) {
-    const long long N = (long long)scene.camera.width * scene.camera.height;
-    if (pass == 0) startChains(scene, opt, threads, mp, rays);
-    mp.image.assign(size_t(N), Vec3(0));
-    if (!(mp.b > 0)) return;
-    const long long C = (long long)mp.chains.size();
-    const RenderOptions chainOpt = chainOptions(opt);
-    rays += parallelRows(int(C), threads, [&](int c, bool) {
-        MltChain& chain = mp.chains[c];
+// One pass of a method's chains: W H mutations shared among them (one per pixel on average),
+// each chain's splats kept apart and added in chain order, so that the image does not depend on
+// --threads. step(chain, splat) makes one mutation and splats its expected values.
+template <class Chain, class Step>
+inline void mutateChains(std::vector<Chain>& chains, MetropolisPass& mp, long long N, int threads, const Step& step) {
+    const long long C = (long long)chains.size();
+    mp.chainSplats.resize(size_t(C));
+    parallelRows(int(C), threads, [&](int c) {
+        Chain& chain = chains[c];
         std::vector<Splat>& out = mp.chainSplats[c];
         out.clear();
-        auto splat = [&](const MltState& u, double weight) {
-            for (const Splat& h : u.contributions)
-                if (!isBlack(h.value)) out.push_back({h.pixel, h.value * float(weight)});
-        };
-        auto evaluate = [&](MltState& u) { evaluateState(scene, chainOpt, u, chain.rng, chain.rng, chain.rng); };
-        for (long long i = 0, n = mutationsOfChain(N, C, c); i < n; ++i) metropolisStep(opt, chain, evaluate, splat);
+        if (!(chain.current.f > 0)) return;  // its start found no path (mlt)
+        auto splat = [&](const auto& state, double weight) { splatState(state, weight, out); };
+        for (long long i = 0, n = mutationsOfChain(N, C, c); i < n; ++i) step(chain, splat);
         splat(chain.current, chain.currentWeight);
         chain.currentWeight = 0;
     });
-    std::vector<int> lengthOfChain(C, 0);
-    std::vector<long long> mutations(C);
-    for (long long c = 0; c < C; ++c) {
+}
+
+// One pass of pssmlt or mmlt.
+inline void tracePrimarySamplePass(const Scene& scene, const SampleOptions& opt, int pass, int threads, MetropolisPass& mp) {
+    const long long N = (long long)scene.camera.width * scene.camera.height;
+    if (pass == 0) startPrimarySampleChains(scene, opt, threads, mp);
+    mp.image.assign(size_t(N), Vec3(0));
+    if (!(mp.b > 0)) return;
+    const SampleOptions chainOpt = chainOptions(opt);
+    mutateChains(mp.chains, mp, N, threads, [&](PrimarySampleChain& chain, const auto& splat) {
+        auto evaluate = [&](PrimarySampleState& u) { evaluateState(scene, chainOpt, u, chain.rng, chain.rng, chain.rng); };
+        metropolisStep(opt, chain, evaluate, splat);
+    });
+    std::vector<int> lengthOfChain(mp.chains.size(), 0);  // mmlt: its length's index; pssmlt: one b
+    for (size_t c = 0; c < mp.chains.size(); ++c)
         if (opt.method == Method::MMLT) lengthOfChain[c] = mp.chains[c].current.length - shortestChainPath(opt);
-        mutations[c] = mutationsOfChain(N, C, c);
-    }
-    addChainSplats(mp, N, lengthOfChain, mutations);
-    for (long long c = 0; c < C; ++c) {  // the next pass's b, with this pass's large steps
+    addChainSplats(mp, N, lengthOfChain);
+    for (size_t c = 0; c < mp.chains.size(); ++c) {  // the next pass's b, with this pass's large steps
         mp.fByLength[lengthOfChain[c]].add(mp.chains[c].largeSteps);
         mp.chains[c].largeSteps = FSum();
     }
@@ -3140,58 +3088,50 @@ inline void traceMltPass(const Scene& scene, const RenderOptions& opt, int pass,
 
 // mlt's bootstrap sample i: a bdpt sample of a uniform film point; each strategy's MIS-weighted
 // luminance w_{s,t} f/p_{s,t} (the chains' lengths only) is a candidate start. Returns their sum;
-// `pick` in [0, sum) chooses one into `start`.
-inline double pathBootstrapSample(const Scene& scene, const RenderOptions& opt, int i, double pick, ChainPath* start) {
+// `pick` in [0, sum) chooses one into `start`, rebuilt as the walkers would have made it.
+inline double pathBootstrapSample(const Scene& scene, const SampleOptions& opt, int i, double pick, MutatedPath* start) {
     thread_local std::vector<PathVertex> light, camera, full, startLight, startCamera;
     thread_local RowOutput out;
-    RenderOptions record = opt;
-    record.strategyMaxLength = opt.maxDepth + 1;  // every strategy's contribution, unweighted and weighted
+    SampleOptions record = opt;
+    record.strategyMaxLength = opt.maxDepth + 1;  // every strategy's contribution and weight
     record.minDepth = shortestChainPath(opt) - 1;
     Rng cameraRng = bootstrapRng(opt, i, 0), lightRng = bootstrapRng(opt, i, 1);
-    const Camera& cam = scene.camera;
-    float fx = cameraRng.uniform() * cam.width, fy = cameraRng.uniform() * cam.height;
-    int px = std::min(int(fx), cam.width - 1), py = std::min(int(fy), cam.height - 1);
-    cameraSubpath(scene, record, filmCoordinate(px, fx - px), filmCoordinate(py, fy - py), cameraRng, camera);
+    FilmPoint film = uniformFilmPoint(scene.camera, cameraRng);
+    cameraSubpath(scene, record, film.x, film.y, cameraRng, camera);
     lightSubpath(scene, record, lightRng, light);
     out.strategySplats.clear();
     out.splats.clear();
-    connectSubpaths(scene, record, light, camera, py * cam.width + px, 0, out);
+    connectSubpaths(scene, record, light, camera, pixelAt(scene.camera, film), 0, out);
     double sum = 0;
     for (const StrategySplat& c : out.strategySplats) {
-        if (c.image % 2 == 0) continue;  // the unweighted image
-        double w = luminance(c.value);
+        double w = luminance(c.value * c.weight);
         if (!(w > 0) || !std::isfinite(w)) continue;
         sum += w;
         if (!start || pick >= sum) continue;
-        int index = c.image / 2, k = 1;  // index = k(k+1)/2 - 1 + s
-        while ((k + 1) * (k + 2) / 2 - 1 <= index) ++k;
-        int s = index - (k * (k + 1) / 2 - 1), t = k + 1 - s;
-        full.assign(light.begin(), light.begin() + s);
-        for (int j = t - 1; j >= 0; --j) full.push_back(camera[j]);
-        subpathThrough(scene, full, s, Transport::Importance, startLight);
-        subpathThrough(scene, full, t, Transport::Radiance, startCamera);
-        if (!joinPath(scene, startLight, s, startCamera, t, *start)) start->f = 0;
+        full.assign(light.begin(), light.begin() + c.s);
+        for (int j = c.t - 1; j >= 0; --j) full.push_back(camera[j]);
+        subpathThrough(scene, full, c.s, Transport::Importance, startLight);
+        subpathThrough(scene, full, c.t, Transport::Radiance, startCamera);
+        if (!joinPath(scene, startLight, c.s, startCamera, c.t, *start)) start->f = 0;
         start = nullptr;
     }
     return sum;
 }
 
 // mlt's first pass: b and each chain's start from the bootstrap.
-inline void startPathChains(const Scene& scene, const RenderOptions& opt, int threads, MltPass& mp, RayCount& rays) {
+inline void startPathChains(const Scene& scene, const SampleOptions& opt, int threads, MetropolisPass& mp) {
     const int n = bootstrapSamples(opt);
-    std::vector<double> f(n);
-    rays += parallelRows(n, threads, [&](int i, bool) { f[i] = pathBootstrapSample(scene, opt, i, 0, nullptr); });
+    std::vector<double> f = bootstrapValues(n, threads, [&](int i) { return pathBootstrapSample(scene, opt, i, 0, nullptr); });
     mp.fByLength.assign(1, FSum());
     for (double x : f) mp.fByLength[0].add(x);
     estimateB(mp);
     mp.paths.assign(std::max(1, opt.chains), PathChain());
-    mp.chainSplats.assign(mp.paths.size(), {});
     if (!(mp.b > 0)) return;
     std::vector<double> cdf(n);
     std::partial_sum(f.begin(), f.end(), cdf.begin());
     for (size_t c = 0; c < mp.paths.size(); ++c) {
         PathChain& chain = mp.paths[c];
-        chain.rng = makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(c), 0);
+        chain.rng = chainRng(opt, c);
         for (int attempt = 0; attempt < 16 && !(chain.current.f > 0); ++attempt) {
             double pick;
             int i = pickInProportion(cdf, chain.rng.uniform(), pick);
@@ -3201,56 +3141,43 @@ inline void startPathChains(const Scene& scene, const RenderOptions& opt, int th
     }
 }
 
-// One pass of mlt: W H mutations shared among the chains.
-inline void tracePathPass(const Scene& scene, const RenderOptions& opt, int pass, int threads, MltPass& mp, RayCount& rays) {
+// One pass of mlt; each chain counts its proposals and acceptances per mutation (Veach's table).
+inline void tracePathPass(const Scene& scene, const SampleOptions& opt, int pass, int threads, MetropolisPass& mp) {
     const long long N = (long long)scene.camera.width * scene.camera.height;
-    if (pass == 0) startPathChains(scene, opt, threads, mp, rays);
+    if (pass == 0) startPathChains(scene, opt, threads, mp);
     mp.image.assign(size_t(N), Vec3(0));
     if (!(mp.b > 0)) return;
-    const long long C = (long long)mp.paths.size();
-    const RenderOptions walk = chainOptions(opt);
+    const SampleOptions walk = chainOptions(opt);
     const LengthRange lengths{shortestChainPath(opt), opt.maxDepth + 1};
-    rays += parallelRows(int(C), threads, [&](int c, bool) {
-        PathChain& chain = mp.paths[c];
-        std::vector<Splat>& out = mp.chainSplats[c];
-        out.clear();
-        if (!(chain.current.f > 0)) return;
-        auto splat = [&](const ChainPath& x, double weight) { out.push_back({x.pixel, x.colour * float(x.f * weight)}); };
-        for (long long i = 0, n = mutationsOfChain(N, C, c); i < n; ++i) {
-            int which = 0;
-            double a = mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal, &which);
-            long long before = chain.accepted;
-            splatAndAccept(chain, a, splat);
-            int m = which == kBidirectional ? 0 : which == kLens ? 1 : 2;
-            ++chain.proposedBy[m];
-            chain.acceptedBy[m] += chain.accepted - before;
-        }
-        splat(chain.current, chain.currentWeight);
-        chain.currentWeight = 0;
+    mutateChains(mp.paths, mp, N, threads, [&](PathChain& chain, const auto& splat) {
+        int which = 0;
+        double a = mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal, &which);
+        long long before = chain.accepted;
+        splatAndAccept(chain, a, splat);
+        int m = which == kBidirectional ? 0 : which == kLens ? 1 : 2;
+        ++chain.proposedBy[m];
+        chain.acceptedBy[m] += chain.accepted - before;
     });
-    std::vector<long long> mutations(C);
-    for (long long c = 0; c < C; ++c) mutations[c] = mutationsOfChain(N, C, c);
-    addChainSplats(mp, N, std::vector<int>(C, 0), mutations);
+    addChainSplats(mp, N, std::vector<int>(mp.paths.size(), 0));
 }
 
-// The options of that bdpt sample: paths of one and two segments.
-inline RenderOptions shortPathOptions(const RenderOptions& opt) {
-    RenderOptions o = opt;
+// The options of the bdpt sample per pixel: paths of one and two segments.
+inline SampleOptions shortPathOptions(const SampleOptions& opt) {
+    SampleOptions o = opt;
     o.method = Method::BDPT;
     o.maxDepth = std::min(opt.maxDepth, 1);
-    o.onPass = nullptr;
     return o;
 }
 
 // The Metropolis methods: the pixel's value is its share of the chains' pass, and (short paths
 // apart) one bdpt sample of paths of one and two segments.
-inline Vec3 sampleMLT(const Scene& scene, const RenderOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
-    Vec3 chains = pass.mlt->image[size_t(y) * scene.camera.width + x];
+inline Vec3 sampleMLT(const Scene& scene, const SampleOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
+    Vec3 chains = pass.metropolis->image[size_t(y) * scene.camera.width + x];
     if (opt.chainShortPaths) return chains;
-    return chains + sampleBDPT(scene, pass.mlt->shortPaths, pass, x, y, rng, out);
+    return chains + sampleBDPT(scene, pass.metropolis->shortPaths, pass, x, y, rng, out);
 }
 
-// == 8. Film, rendering loop, image files =======================================================
+// == 9. Film, rendering loop, image files =======================================================
 // A pass gives every pixel one camera sample (and, for light-path methods, every pixel's random
 // stream one light path, splatted wherever it lands). Pixels write only themselves; splats are
 // kept per image row and added in row order after the pass, so the sum, and the image, is the
@@ -3270,6 +3197,15 @@ inline double imageMean(const Image& img) {
     return s / (3.0 * std::max<size_t>(1, img.pixels.size()));
 }
 
+// What the methods prepare per pass, kept from pass to pass (vcm reuses its buffers, the
+// Metropolis methods their chains); after a render, what their last pass left (b, the chains'
+// acceptance, vcm's light vertices).
+struct PassStorage {
+    std::vector<Vpl> vpls;
+    VcmPass vcm;
+    MetropolisPass metropolis;
+};
+
 struct RenderResult {
     Image image;                    // mean over passes
     Image variance;                 // per pixel and channel: variance of that mean (from the passes)
@@ -3279,101 +3215,32 @@ struct RenderResult {
     std::vector<double> passMeans;  // each pass's image mean: independent samples of the mean
     double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: the energy gathered, before and after
     double clampRemoved() const { return energyUnclamped > 0 ? 1 - energyClamped / energyUnclamped : 0; }
-    std::vector<Image> strategyImages;  // bdpt --strategies: [2 strategyIndex(s,t) + weighted]
-    bool interrupted = false;
+    std::vector<Image> strategyImages;  // --strategies: [2 strategyImage(...) + weighted]
     RayCount rays;                  // all threads, all passes (ir's VPL paths included)
-    size_t lightVertexBytes = 0;    // vcm: the most one pass's light subpaths and grid took
-    long long mergeableVertices = 0;  // vcm: in the grid, summed over passes
-    long long lightVertices = 0;      // vcm: of the light subpaths, summed over passes
-    double mltB = 0, mltBError = 0;   // mlt, mmlt: the final b (bootstrap and large steps) and its standard error
-    long long mltAccepted = 0, mltProposed = 0;
-    long long mutationsAccepted[3] = {0, 0, 0}, mutationsProposed[3] = {0, 0, 0};  // mlt: bidirectional, lens, caustic
-};
-
-// 13 h 20 min, 4 min 05 s, 12.3 s: what a person reads at a glance.
-inline std::string duration(double seconds) {
-    char text[32];
-    long s = long(seconds + 0.5);
-    if (seconds >= 3600) std::snprintf(text, sizeof text, "%ld h %02ld min", s / 3600, s / 60 % 60);
-    else if (seconds >= 60) std::snprintf(text, sizeof text, "%ld min %02ld s", s / 60, s % 60);
-    else std::snprintf(text, sizeof text, "%.1f s", seconds);
-    return text;
-}
-
-struct ProgressBar {
-    bool enabled = false;
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last;
-    void show(double fraction, int passes, double etaSeconds) {
-        if (!enabled) return;
-        auto now = std::chrono::steady_clock::now();
-        if (fraction < 1 && now - last < std::chrono::milliseconds(200)) return;
-        last = now;
-        int width = 30, filled = int(std::min(1.0, fraction) * width);
-        std::fprintf(stderr, "\r[%s%s] %3d%%  pass %d  ETA %s   ", std::string(filled, '#').c_str(),
-                     std::string(width - filled, '.').c_str(), int(100 * std::min(1.0, fraction)), passes,
-                     duration(std::max(0.0, etaSeconds)).c_str());
-        if (fraction >= 1) std::fprintf(stderr, "\n");
-    }
+    PassStorage method;             // what the method's last pass left
 };
 
 inline double secondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Ctrl-C: the first interrupt lets the pass in flight finish, then the render stops and the
-// completed passes are written as usual (status 130). A second one removes the file being
-// written, if any, and exits at once (status 3, "abandoned"); but a second signal within a second
-// of the first is the same key press: `timeout -s INT` and some terminals signal the process and
-// then its whole group. Only async-signal-safe calls in the handler.
-constexpr int kExitInterrupted = 130, kExitAbandoned = 3;
-inline std::atomic<int> gInterrupts{0};
-inline std::atomic<long long> gFirstInterruptNs{0};
-inline char gFileBeingWritten[4096] = {0};
-inline void writeToStderr(const char* text) {
-    ssize_t written = write(2, text, std::strlen(text));
-    (void)written;  // nothing more to do if stderr is gone
-}
-extern "C" inline void onInterrupt(int) {
-    timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    long long now = ts.tv_sec * 1000000000LL + ts.tv_nsec;
-    if (gInterrupts.fetch_add(1) == 0) {
-        gFirstInterruptNs = now;
-        writeToStderr("\nbdpt: interrupted: finishing the pass in flight, then writing the image (Ctrl-C again to abandon it)\n");
-        return;
-    }
-    if (now - gFirstInterruptNs.load() < 1000000000LL) return;
-    if (gFileBeingWritten[0]) unlink(gFileBeingWritten);
-    writeToStderr("bdpt: abandoned: no image written\n");
-    _exit(kExitAbandoned);
-}
-
-// What the methods prepare per pass, kept from pass to pass (vcm reuses its buffers, mlt its chains).
-struct PassStorage {
-    std::vector<Vpl> vpls;
-    VcmPass vcm;
-    MltPass mlt;
-    RayCount rays;  // traced for them
-};
-
-inline PassData preparePass(const Scene& scene, const RenderOptions& opt, int pass, int threads, PassStorage& storage) {
+inline PassData preparePass(const Scene& scene, const SampleOptions& opt, int pass, int threads, PassStorage& storage) {
     PassData data;
     data.pass = pass;
-    storage.rays = RayCount();
     switch (opt.method) {
         case Method::IR:
-            storage.rays = parallelRows(1, 1, [&](int, bool) { storage.vpls = traceVpls(scene, opt, pass); });
+            storage.vpls = traceVpls(scene, opt, pass);
             data.vpls = &storage.vpls;
             break;
         case Method::VCM:
-            traceVcmLightPass(scene, opt, pass, threads, storage.vcm, storage.rays);
+            traceVcmLightPass(scene, opt, pass, threads, storage.vcm);
             data.vcm = &storage.vcm;
             break;
         case Method::PSSMLT: case Method::MMLT: case Method::MLT:
-            if (opt.method == Method::MLT) tracePathPass(scene, opt, pass, threads, storage.mlt, storage.rays);
-            else traceMltPass(scene, opt, pass, threads, storage.mlt, storage.rays);
-            storage.mlt.shortPaths = shortPathOptions(opt);
-            data.mlt = &storage.mlt;
+            if (opt.method == Method::MLT) tracePathPass(scene, opt, pass, threads, storage.metropolis);
+            else tracePrimarySamplePass(scene, opt, pass, threads, storage.metropolis);
+            storage.metropolis.shortPaths = shortPathOptions(opt);
+            data.metropolis = &storage.metropolis;
             break;
         case Method::PT: case Method::NEE: case Method::LT: case Method::BDPT: break;  // nothing before the pixels
     }
@@ -3381,7 +3248,7 @@ inline PassData preparePass(const Scene& scene, const RenderOptions& opt, int pa
 }
 
 // Each method's sampleXX, all of the one shape section 7's banner gives.
-using SampleFunction = Vec3 (*)(const Scene&, const RenderOptions&, const PassData&, int x, int y, Rng&, RowOutput&);
+using SampleFunction = Vec3 (*)(const Scene&, const SampleOptions&, const PassData&, int x, int y, Rng&, RowOutput&);
 inline SampleFunction sampleFunction(Method m) {
     switch (m) {
         case Method::PT: return samplePT;
@@ -3395,15 +3262,35 @@ inline SampleFunction sampleFunction(Method m) {
     return nullptr;  // not reached: every method has its case (-Wswitch checks)
 }
 
+// Per-strategy images (--strategies): strategy (s,t) of path length k = s+t-1 <= maxLength, rows
+// by k and s = 0..k within a row (the slides' pyramid), then (vcm) one image per path length of
+// all its merges. Each comes twice: unweighted (2i) and MIS-weighted (2i + 1).
+inline int strategyIndex(int s, int t) {
+    int k = s + t - 1;
+    return k * (k + 1) / 2 - 1 + s;
+}
+inline int mergeImageIndex(int k, int maxLength) { return maxLength * (maxLength + 3) / 2 + k - 1; }
+inline int strategyImage(const StrategySplat& c, int maxLength) {
+    return c.merge ? mergeImageIndex(c.s + c.t - 1, maxLength) : strategyIndex(c.s, c.t);
+}
+inline int strategyImageCount(const SampleOptions& opt) {  // vcm: one merge image per length
+    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
+    return opt.method == Method::VCM ? mergeImageIndex(L + 1, L) : L * (L + 3) / 2;
+}
+
 // The film: per pixel and channel the sums of the pass images and of their squares (the mean is
 // the image, the spread its variance), and the sums of the strategy images.
 struct Film {
-    int width, height;
+    int width, height, strategyMaxLength;
     std::vector<double> sum, sumSq;
     std::vector<std::vector<double>> strategySum;
-    Film(int w, int h, int strategyImages)
-        : width(w), height(h), sum(3 * size_t(w) * h, 0.0), sumSq(sum.size(), 0.0),
-          strategySum(2 * strategyImages, std::vector<double>(sum.size(), 0.0)) {}
+    Film(int w, int h, const SampleOptions& opt)
+        : width(w), height(h), strategyMaxLength(opt.strategyMaxLength), sum(3 * size_t(w) * h, 0.0), sumSq(sum.size(), 0.0),
+          strategySum(2 * strategyImageCount(opt), std::vector<double>(sum.size(), 0.0)) {}
+    void addStrategy(int image, int pixel, Vec3 value) {
+        if (isFinite(value))
+            for (int c = 0; c < 3; ++c) strategySum[image][3 * size_t(pixel) + c] += value[c];
+    }
     // A pass's rows: the pixels' samples are in `pass`; splats are added in row order, so that the
     // image does not depend on which thread rendered which row. Returns the pass image's mean.
     double addPass(std::vector<Vec3>& pass, const std::vector<RowOutput>& rows, RenderResult& result) {
@@ -3415,9 +3302,11 @@ struct Film {
                 if (isFinite(s.value)) pass[s.pixel] += s.value;
                 else ++result.nonFinite;
             }
-            for (const StrategySplat& s : row.strategySplats)
-                if (isFinite(s.value))
-                    for (int c = 0; c < 3; ++c) strategySum[s.image][3 * size_t(s.pixel) + c] += s.value[c];
+            for (const StrategySplat& s : row.strategySplats) {
+                int image = strategyImage(s, strategyMaxLength);
+                addStrategy(2 * image, s.pixel, s.value);
+                addStrategy(2 * image + 1, s.pixel, s.value * s.weight);
+            }
         }
         double passSum = 0;
         for (size_t i = 0; i < pass.size(); ++i) {
@@ -3447,27 +3336,30 @@ struct Film {
     }
 };
 
-// The slides' estimator, pass by pass: every pixel's sample, then the splats, then the film.
-inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
-    const int W = scene.camera.width, H = scene.camera.height;
-    const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    const SampleFunction sample = sampleFunction(opt.method);
-    Film film(W, H, strategyImageCount(opt));
-    std::vector<Vec3> pass(size_t(W) * H);
-    std::vector<RowOutput> rows(H);
-    RenderResult result;
+// A render in progress, pass by pass: addPass() renders the next pass and adds it to the film;
+// `pass` then holds that pass's image. render() below runs as many passes as the options ask;
+// classroom/'s tools run them one at a time and look at each (a live image, the error so far).
+struct Rendering {
+    const Scene& scene;
+    const RenderOptions opt;
+    const int threads;
+    Film film;
     PassStorage storage;
-    ProgressBar bar;
-    bar.enabled = !opt.quiet && isatty(2);
-    auto t0 = std::chrono::steady_clock::now();
-    auto fraction = [&](double passesDone) { return opt.seconds > 0 ? secondsSince(t0) / opt.seconds : passesDone / std::max(1, opt.spp); };
-    for (int p = 0; opt.seconds > 0 ? (p == 0 || secondsSince(t0) < opt.seconds) : p < opt.spp; ++p) {
-        if (p > 0 && gInterrupts.load() > 0) {
-            result.interrupted = true;
-            break;
-        }
+    std::vector<Vec3> pass;
+    std::vector<RowOutput> rows;
+    RenderResult result;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    Rendering(const Scene& s, const RenderOptions& o)
+        : scene(s), opt(o), threads(o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()))),
+          film(s.camera.width, s.camera.height, o), pass(size_t(s.camera.width) * s.camera.height), rows(s.camera.height) {}
+
+    // The slides' estimator for one pass: every pixel's sample, then the splats, then the film.
+    void addPass() {
+        const int W = scene.camera.width, H = scene.camera.height, p = result.passes;
+        const RayCount before = gRaysTraced;  // parallelRows adds the other threads' rays to this one's
         const PassData data = preparePass(scene, opt, p, threads, storage);
-        RayCount traced = parallelRows(H, threads, [&](int y, bool onCallingThread) {
+        const SampleFunction sample = sampleFunction(opt.method);
+        parallelRows(H, threads, [&](int y) {
             RowOutput& row = rows[y];
             row.splats.clear();
             row.strategySplats.clear();
@@ -3479,43 +3371,37 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
                 pass[size_t(y) * W + x] = v;
             }
-            if (onCallingThread) {
-                double f = fraction(p + double(y + 1) / H);
-                bar.show(std::min(0.999, f), p, secondsSince(t0) * (1 / std::max(1e-9, f) - 1));
-            }
         });
-        result.rays += traced;
-        result.rays += storage.rays;
-        result.lightVertexBytes = std::max(result.lightVertexBytes, storage.vcm.bytes());
-        result.mergeableVertices += (long long)storage.vcm.stored.size();
-        result.lightVertices += (long long)storage.vcm.vertexCount();
+        result.rays.closest += gRaysTraced.closest - before.closest;
+        result.rays.shadow += gRaysTraced.shadow - before.shadow;
         result.passMeans.push_back(film.addPass(pass, rows, result));
-        if (opt.onPass) opt.onPass(p, pass, result.nonFinite);
         result.passes = p + 1;
     }
-    result.seconds = secondsSince(t0);
-    result.mltB = storage.mlt.b;
-    result.mltBError = storage.mlt.bStandardError;
-    result.mltAccepted = storage.mlt.total(&MltChain::accepted, &PathChain::accepted);
-    result.mltProposed = storage.mlt.total(&MltChain::proposed, &PathChain::proposed);
-    for (const PathChain& c : storage.mlt.paths)
-        for (int m = 0; m < 3; ++m) result.mutationsAccepted[m] += c.acceptedBy[m], result.mutationsProposed[m] += c.proposedBy[m];
-    bar.show(1, result.passes, 0);
-    film.finish(result.passes, result);
-    return result;
+    RenderResult finish() {
+        result.seconds = secondsSince(start);
+        film.finish(result.passes, result);
+        result.method = std::move(storage);
+        return std::move(result);
+    }
+};
+
+// Passes until --spp of them are done, or until --time is up (at least one).
+inline bool morePasses(const Rendering& r) {
+    return r.opt.seconds > 0 ? secondsSince(r.start) < r.opt.seconds : r.result.passes < r.opt.spp;
+}
+inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
+    Rendering r(scene, opt);
+    do r.addPass();
+    while (morePasses(r));
+    return r.finish();
 }
 
 // Files appear whole or not at all: written under a temporary name, then renamed.
+inline std::string tempName(const std::string& path) { return path + ".tmp" + std::to_string(getpid()); }
 inline bool commitFile(const std::string& tmp, const std::string& path, bool ok) {
     bool done = ok && std::rename(tmp.c_str(), path.c_str()) == 0;
     if (!done) std::remove(tmp.c_str());
-    gFileBeingWritten[0] = 0;
     return done;
-}
-inline std::string tempName(const std::string& path) {  // and remember it for a second Ctrl-C
-    std::string tmp = path + ".tmp" + std::to_string(getpid());
-    std::snprintf(gFileBeingWritten, sizeof gFileBeingWritten, "%s", tmp.c_str());
-    return tmp;
 }
 
 // PFM: linear floats, little-endian (scale -1), rows from the bottom up.
@@ -3530,84 +3416,11 @@ inline bool writePFM(const Image& img, const std::string& path) {
     return commitFile(tmp, path, ok);
 }
 
-inline bool readPFM(const std::string& path, Image& img) {
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return false;
-    char magic[3] = {0};
-    int w = 0, h = 0;
-    float scale = 0;
-    bool ok = std::fscanf(f, "%2s %d %d %f", magic, &w, &h, &scale) == 4 && std::string(magic) == "PF" && w > 0 &&
-              h > 0 && w <= 16384 && h <= 16384 && scale < 0 && std::fgetc(f) != EOF;
-    if (ok) {
-        img = Image(w, h);
-        for (int y = h - 1; y >= 0 && ok; --y) ok = std::fread(&img.at(0, y), sizeof(Vec3), w, f) == size_t(w);
-    }
-    std::fclose(f);
-    return ok;
-}
-
-// Error against a reference image (speed against accuracy). RMSE over pixels and channels;
-// relMSE = mean (x - ref)^2 / (ref^2 + 0.01), as rendering papers report it; the relative bias of
-// the image mean; and a firefly measure: the 99.9th percentile of the per-pixel absolute error
-// over its median (large where a few pixels carry huge errors).
-struct ErrorMetrics {
-    double rmse = 0, relMse = 0, mean = 0, bias = 0, firefly = 0;
-    double rmseWithoutLamp = 0;  // rmse over the pixels that are not nearLamp
-};
-
-// A lamp seen directly: a pixel within one pixel of a reference value above 5. Its edge pixels
-// are part lamp (Le = 17 in the Cornell boxes) and part ceiling, and a camera sample's jitter lands
-// on one or the other: that noise is the pixel filter's, the same for every camera-path method,
-// and on the Cornell boxes it is most of their MSE, hiding the transport's error (light tracing
-// splats many lamp points into each such pixel per pass and does not show it). make efficiency
-// and the charts' curves leave these pixels out.
-inline bool nearLamp(const Image& ref, int x, int y) {
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            int u = x + dx, v = y + dy;
-            if (u >= 0 && v >= 0 && u < ref.width && v < ref.height && maxComponent(ref.at(u, v)) > 5) return true;
-        }
-    return false;
-}
-
-inline ErrorMetrics compareToReference(const Image& img, const Image& ref) {
-    ErrorMetrics m;
-    std::vector<double> pixelError(img.pixels.size());
-    double refSum = 0, sum = 0, lampless = 0;
-    long lamplessValues = 0;
-    for (size_t i = 0; i < img.pixels.size(); ++i) {
-        bool lamp = ref.width > 0 && nearLamp(ref, int(i % ref.width), int(i / ref.width));
-        for (int c = 0; c < 3; ++c) {
-            double x = img.pixels[i][c], r = ref.pixels[i][c], e = x - r;
-            m.rmse += e * e;
-            if (!lamp) lampless += e * e, ++lamplessValues;
-            m.relMse += e * e / (r * r + 0.01);
-            sum += x;
-            refSum += r;
-        }
-        pixelError[i] = std::fabs(double(average(img.pixels[i])) - average(ref.pixels[i]));
-    }
-    double n = 3.0 * img.pixels.size();
-    m.rmse = std::sqrt(m.rmse / n);
-    m.rmseWithoutLamp = std::sqrt(lampless / std::max(1L, lamplessValues));
-    m.relMse /= n;
-    m.mean = sum / n;
-    m.bias = refSum > 0 ? (sum - refSum) / refSum : 0;
-    auto quantile = [&](double q) {
-        size_t k = std::min(pixelError.size() - 1, size_t(q * (pixelError.size() - 1) + 0.5));
-        std::nth_element(pixelError.begin(), pixelError.begin() + k, pixelError.end());
-        return pixelError[k];
-    };
-    double median = quantile(0.5), p999 = quantile(0.999);
-    m.firefly = p999 / std::max(median, 1e-12);
-    return m;
-}
-
+// PNG: sRGB bytes of the image scaled by 2^exposure.
 inline unsigned char toSRGB8(float linear) {
     float v = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
     return (unsigned char)(std::min(1.0f, std::max(0.0f, v)) * 255.0f + 0.5f);
 }
-
 inline std::vector<unsigned char> toSRGBBytes(const Image& img, float exposure) {
     std::vector<unsigned char> bytes(img.pixels.size() * 3);
     float scale = std::exp2(exposure);
@@ -3615,100 +3428,13 @@ inline std::vector<unsigned char> toSRGBBytes(const Image& img, float exposure) 
         for (int c = 0; c < 3; ++c) bytes[3 * i + c] = toSRGB8(img.pixels[i][c] * scale);
     return bytes;
 }
-
 inline bool writePNGBytes(const std::vector<unsigned char>& bytes, int width, int height, const std::string& path) {
     std::string tmp = tempName(path);
     bool ok = stbi_write_png(tmp.c_str(), width, height, 3, bytes.data(), width * 3) != 0;
     return commitFile(tmp, path, ok);
 }
-
 inline bool writePNG(const Image& img, const std::string& path, float exposure) {
     return writePNGBytes(toSRGBBytes(img, exposure), img.width, img.height, path);
-}
-
-// Where two methods differ: the ratio A/B of the two images' means over blocks of block x block
-// pixels (the blocks average the noise away), as a false-colour image that is white where A = B,
-// redder where A is brighter and bluer where darker, saturating at one stop; dark grey where
-// both are black. Each block's pixels hold its ratio (the PFM).
-inline Image blockRatio(const Image& a, const Image& b, int block) {
-    Image r(a.width, a.height);
-    for (int by = 0; by < a.height; by += block)
-        for (int bx = 0; bx < a.width; bx += block) {
-            double sa = 0, sb = 0;
-            for (int y = by; y < std::min(a.height, by + block); ++y)
-                for (int x = bx; x < std::min(a.width, bx + block); ++x) {
-                    sa += double(a.at(x, y).x) + a.at(x, y).y + a.at(x, y).z;
-                    sb += double(b.at(x, y).x) + b.at(x, y).y + b.at(x, y).z;
-                }
-            float ratio = sb > 0 ? float(sa / sb) : sa > 0 ? kInf : std::numeric_limits<float>::quiet_NaN();
-            for (int y = by; y < std::min(a.height, by + block); ++y)
-                for (int x = bx; x < std::min(a.width, bx + block); ++x) r.at(x, y) = Vec3(ratio);
-        }
-    return r;
-}
-
-inline Image ratioColours(const Image& ratio) {
-    Image c(ratio.width, ratio.height);
-    for (size_t i = 0; i < ratio.pixels.size(); ++i) {
-        float q = ratio.pixels[i].x;
-        if (std::isnan(q)) { c.pixels[i] = Vec3(0.03f); continue; }
-        float t = std::max(-1.0f, std::min(1.0f, q > 0 ? std::log2(q) : -1.0f));
-        c.pixels[i] = t >= 0 ? Vec3(1, 1 - t, 1 - t) : Vec3(1 + t, 1 + t, 1);
-    }
-    return c;
-}
-
-// Labels burned into images (the strategy pyramid, --side-by-side): a 5-pixel-high font, 3
-// pixels wide but for 'm' and 'w', which need 5 to read as themselves; drawn `scale` times larger.
-inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, int x0, int y0, const std::string& text, int scale) {
-    static const std::map<char, const char*> glyphs = {
-        {'0', "111101101101111"}, {'1', "010110010010111"}, {'2', "111001111100111"}, {'3', "111001111001111"},
-        {'4', "101101111001001"}, {'5', "111100111001111"}, {'6', "111100111101111"}, {'7', "111001001001001"},
-        {'8', "111101111101111"}, {'9', "111101111001111"}, {'a', "000011101101011"}, {'b', "100110101101110"},
-        {'c', "000011100100011"}, {'d', "001011101101011"}, {'e', "000010111100011"}, {'f', "011100110100100"},
-        {'g', "011101011001110"}, {'h', "100110101101101"}, {'i', "010000010010010"}, {'j', "001000001101010"},
-        {'k', "100101110101101"}, {'l', "110010010010111"}, {'m', "0000011010101011010110101"},
-        {'n', "000110101101101"}, {'o', "000010101101010"}, {'p', "000110101110100"}, {'q', "000011101011001"},
-        {'r', "000011100100100"}, {'s', "000011100001110"}, {'t', "010111010010011"}, {'u', "000101101101011"},
-        {'v', "000101101101010"}, {'w', "0000010001101011010101010"}, {'x', "000101010010101"},
-        {'y', "101101011001110"}, {'z', "111001010100111"}, {'.', "000000000000010"}, {',', "000000000010100"},
-        {':', "000010000010000"}, {'-', "000000111000000"}, {'+', "000010111010000"}, {'=', "000111000111000"},
-        {'(', "010100100100010"}, {')', "010001001001010"}, {'/', "001001010100100"}, {'%', "101001010100101"},
-        {' ', "000000000000000"}};
-    int x = x0;
-    for (char ch : text) {
-        auto g = glyphs.find(char(std::tolower((unsigned char)ch)));
-        if (g == glyphs.end()) continue;
-        const int glyphWidth = int(std::strlen(g->second)) / 5;
-        for (int gy = 0; gy < 5; ++gy)
-            for (int gx = 0; gx < glyphWidth; ++gx) {
-                if (g->second[gy * glyphWidth + gx] != '1') continue;
-                for (int dy = 0; dy < scale; ++dy)
-                    for (int dx = 0; dx < scale; ++dx) {
-                        int px = x + gx * scale + dx, py = y0 + gy * scale + dy;
-                        if (px < 0 || py < 0 || px >= width || py >= height) continue;
-                        for (int c = 0; c < 3; ++c) rgb[3 * (size_t(py) * width + px) + c] = 255;
-                    }
-            }
-        x += (glyphWidth + 1) * scale;
-    }
-}
-inline int labelWidth(const std::string& text, int scale) {  // drawLabel's advance (about 4 scale a character)
-    int w = 0;
-    for (char ch : text) w += (ch == 'm' || ch == 'w' || ch == 'M' || ch == 'W' ? 6 : 4) * scale;
-    return w;
-}
-// The labels' scale over an image `width` pixels wide: about 24 characters across, smaller if the
-// widest line (its drawLabel width at scale 1) would not fit.
-inline int labelScale(int width, int widest) { return std::max(1, std::min(std::max(2, width / 100), (width - 4) / std::max(1, widest))); }
-
-// An image of w x h sRGB bytes copied into a canvas canvasW wide at (x0, y0), each pixel `zoom`
-// times larger.
-inline void blitZoomed(std::vector<unsigned char>& canvas, int canvasW, const std::vector<unsigned char>& rgb, int w, int h, int zoom,
-                       int x0, int y0) {
-    for (int y = 0; y < h * zoom; ++y)
-        for (int x = 0; x < w * zoom; ++x)
-            std::copy_n(&rgb[3 * (size_t(y / zoom) * w + x / zoom)], 3, &canvas[3 * (size_t(y0 + y) * canvasW + x0 + x)]);
 }
 
 inline bool hasExtension(const std::string& path, const std::string& ext) {  // case-insensitive
@@ -3717,54 +3443,17 @@ inline bool hasExtension(const std::string& path, const std::string& ext) {  // 
         if (std::tolower((unsigned char)path[path.size() - ext.size() + i]) != ext[i]) return false;
     return true;
 }
-
 inline std::string replaceExtension(const std::string& path, const std::string& ext) {
     size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
     bool hasExt = dot != std::string::npos && (slash == std::string::npos || dot > slash);
     return (hasExt ? path.substr(0, dot) : path) + ext;
 }
 
-// The pyramid's rows differ by orders of magnitude (each bounce keeps about the albedo), so each
-// row k is brightened by whole stops until its light, the sum of its weighted tiles, comes within
-// half a stop of the brightest row's; the tile's label prints them ("s1 t3 +2").
-inline bool hasMergeImages(const RenderResult& r, int maxLength) {  // vcm: a column "m k" of merges
-    return int(r.strategyImages.size()) > maxLength * (maxLength + 3);
-}
-
-inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
-    const bool merges = hasMergeImages(r, maxLength);
-    std::vector<double> rowMean(maxLength + 1, 0);
-    for (int k = 1; k <= maxLength; ++k) {
-        for (int s = 0; s <= k; ++s) rowMean[k] += imageMean(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1]);
-        if (merges && k > 1) rowMean[k] += imageMean(r.strategyImages[2 * mergeImageIndex(k, maxLength) + 1]);
-    }
-    double brightest = *std::max_element(rowMean.begin(), rowMean.end());
-    std::vector<int> stops(maxLength + 1, 0);
-    for (int k = 1; k <= maxLength; ++k)
-        if (rowMean[k] > 0) stops[k] = std::min(12, int(std::lround(std::log2(brightest / rowMean[k]))));
-    return stops;
-}
-
-// The slides' "Contributions of different paths" as a pyramid: row k = path length (segments),
-// column s = vertices from the light (t = k+1-s from the camera), one image per strategy p_{k,s}.
-// Each tile's label sits in a strip above it, never on the image: the lamp, row 1's whole
-// content, lies at the top of the frame.
-// Each row is labelled with its k in a margin on the left.
-struct PyramidLayout {
-    bool merges;  // vcm: a column "m k" of merges
-    int W, H, gap = 4, scale, strip, margin, rowH, canvasW, canvasH;
-    PyramidLayout(int width, int height, int maxLength, bool withMerges)
-        : merges(withMerges), W(width), H(height), scale(std::max(1, std::min(width / 40, height / 32))), strip(7 * scale),
-          margin(labelWidth("k=" + std::to_string(maxLength), scale) + 2 * gap), rowH(strip + H + gap),
-          canvasW(margin + (maxLength + 1 + merges) * (W + gap) + gap), canvasH(maxLength * rowH + gap) {}
-    int tileX(int k, int s, int maxLength) const { return margin + gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap); }
-    int tileY(int k) const { return gap + (k - 1) * rowH + strip; }
-};
-
-// Every tile of the pyramid, row by row: fn(k, s, image index); s = k + 1 is the merges of
-// length k (vcm), named "m k".
+// The slides' "contributions of different paths", one file per strategy: dir/s1_t3_weighted.png
+// (and .pfm), and for vcm dir/merge_k3_weighted.png; fn(k, s, image) visits them row by row, s =
+// k + 1 being the merges of length k.
 template <class Fn>
-void forEachPyramidTile(int maxLength, bool merges, Fn fn) {
+void forEachStrategyImage(int maxLength, bool merges, Fn fn) {
     for (int k = 1; k <= maxLength; ++k)
         for (int s = 0; s <= k + merges; ++s) {
             bool merge = s == k + 1;
@@ -3772,51 +3461,21 @@ void forEachPyramidTile(int maxLength, bool merges, Fn fn) {
             fn(k, s, merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, k + 1 - s));
         }
 }
+inline bool hasMergeImages(const RenderResult& r, int maxLength) { return int(r.strategyImages.size()) > maxLength * (maxLength + 3); }
 
-inline std::string tileName(int k, int s) {  // "s1 t3", or "m k3" for the merges
-    return s == k + 1 ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(k + 1 - s);
-}
-
-// The montage of one kind (weighted or not), as sRGB bytes of layout.canvasW x layout.canvasH.
-inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLength, float exposure, bool weighted,
-                                                const PyramidLayout& layout, const std::vector<int>& rowStops) {
-    std::vector<unsigned char> canvas(size_t(layout.canvasW) * layout.canvasH * 3, 40);
-    forEachPyramidTile(maxLength, layout.merges, [&](int k, int s, int index) {
-        std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * index + weighted], exposure + rowStops[k]);
-        int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
-        blitZoomed(canvas, layout.canvasW, tile, layout.W, layout.H, 1, x0, y0);
-        std::string label = tileName(k, s) + (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
-        drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - 6 * layout.scale, label, layout.scale);
-        if (s == 0) drawLabel(canvas, layout.canvasW, layout.canvasH, layout.gap, y0 + (layout.H - 5 * layout.scale) / 2, "k=" + std::to_string(k), layout.scale);
-    });
-    return canvas;
-}
-
-inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
-    if (r.strategyImages.empty()) return true;
-    const PyramidLayout layout(r.image.width, r.image.height, maxLength, hasMergeImages(r, maxLength));
-    const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
+inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure) {
     bool ok = true;
-    for (int weighted = 0; weighted < 2; ++weighted) {
-        forEachPyramidTile(maxLength, layout.merges, [&](int k, int s, int index) {
+    for (int weighted = 0; weighted < 2; ++weighted)
+        forEachStrategyImage(maxLength, hasMergeImages(r, maxLength), [&](int k, int s, int index) {
             std::string name = dir + (s == k + 1 ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(k + 1 - s)) +
                                (weighted ? "_weighted" : "_unweighted");
             ok = ok && writePNG(r.strategyImages[2 * index + weighted], name + ".png", exposure) &&
                  writePFM(r.strategyImages[2 * index + weighted], name + ".pfm");
         });
-        std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
-        ok = ok && writePNGBytes(pyramidCanvas(r, maxLength, exposure, weighted, layout, rowStops), layout.canvasW, layout.canvasH, pyramid);
-        if (ok) out << "wrote " << pyramid << "\n";
-    }
-    if (ok) {
-        out << "pyramid rows k = 1.." << maxLength << " brightened by";
-        for (int k = 1; k <= maxLength; ++k) out << " +" << rowStops[k];
-        out << " stops (printed in each tile's label)\n";
-    }
     return ok;
 }
 
-// == 9. Scene file =============================================================================
+// == 10. Scene file ============================================================================
 // One directive per line, '#' starts a comment; the README documents each one with an example.
 //   camera     ex ey ez  lx ly lz  ux uy uz  fov  width height
 //   material   NAME diffuse R G B | mirror R G B | glass IOR | glossy R G B EXPONENT
@@ -4093,12 +3752,7 @@ inline Scene parseScene(const std::string& text, const std::string& fileName) {
 
 inline Scene loadScene(const std::string& path) {
     struct stat st;
-    if (stat(path.c_str(), &st) != 0) {
-        std::string problem = path + ": cannot open the scene file: " + std::strerror(errno);
-        for (const std::string& guess : {"scenes/" + path, path + ".scene", "scenes/" + path + ".scene"})
-            if (stat(guess.c_str(), &st) == 0 && S_ISREG(st.st_mode)) throw InputError(problem + " (did you mean " + guess + "?)");
-        throw InputError(problem);
-    }
+    if (stat(path.c_str(), &st) != 0) throw InputError(path + ": cannot open the scene file: " + std::strerror(errno));
     if (S_ISDIR(st.st_mode)) throw InputError(path + ": is a folder, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open the scene file: " + std::strerror(errno));
@@ -4110,7 +3764,9 @@ inline Scene loadScene(const std::string& path) {
     return parseScene(text, path);
 }
 
-// == 10. Command line ===========================================================================
+// == 11. Command line ==========================================================================
+// One table of options drives parsing, the refusal of an option the method would ignore, and
+// --help. classroom/ adds its tools' rows (side by side, live images, references, figures).
 constexpr const char* kMethodNames[] = {"pt", "nee", "lt", "ir", "bdpt", "vcm", "pssmlt", "mmlt", "mlt"};  // in Method's order
 constexpr const char* kHeuristicNames[] = {"balance", "power", "max", "uniform"};                   // in Heuristic's order
 constexpr const char* kRouletteNames[] = {"throughput", "albedo", "off"};                           // in Roulette's order
@@ -4122,18 +3778,10 @@ struct CommandLine {
     RenderOptions opt;
     Conventions conventions;     // the deliberate mistakes, given to the scene once it is loaded
     int width = 0, height = 0;   // --res; 0: the scene's
-    bool help = false;
     int strategyLength = 5;
-    double liveSeconds = 0;      // --live: rewrite the PNG at most this often while rendering
-    std::string strategiesDir, refPath, logPath;
-    std::vector<std::string> failureLogs;
-    std::string pfmA, pfmB;      // --compare, --average or --ratio: the two images
-    bool average = false;        // --average: write their mean to out
-    bool ratio = false;          // --ratio: write their block ratio to out
-    bool exposureGiven = false;  // else the scene's exposure directive sets it
-    bool overwrite = false;      // --overwrite: --out may replace a file the project ships
-    bool profile = false;        // --profile: one thread, the time per sample by part
-    std::vector<std::string> sideBySide;  // --side-by-side: one method and its options per entry
+    std::string strategiesDir;
+    float exposure = 0;          // stops, for the PNG only; the scene's exposure directive unless given
+    bool exposureGiven = false, quiet = false, help = false;
     std::set<std::string> given; // the options on the line
 };
 
@@ -4147,16 +3795,12 @@ struct ArgReader {
         return args[++i];
     }
     double number(double lo, double hi) {
-        auto shortNumber = [](double x) {
-            char text[32];
-            std::snprintf(text, sizeof text, "%g", x);
-            return std::string(text);
-        };
         std::string name = args[i], v = value();
-        char* end = nullptr;
+        char* end = nullptr, range[64];
         double x = std::strtod(v.c_str(), &end);
+        std::snprintf(range, sizeof range, "a number from %g to %g", lo, hi);
         if (end == v.c_str() || *end != 0 || !std::isfinite(x) || x < lo || x > hi)
-            fail("option " + name + " needs a number from " + shortNumber(lo) + " to " + shortNumber(hi) + ", got '" + printable(v) + "'");
+            fail("option " + name + " needs " + range + ", got '" + printable(v) + "'");
         return x;
     }
     long long integer(double lo, double hi) {
@@ -4186,16 +3830,17 @@ struct ArgReader {
     }
 };
 
-// Every option once: its name and value, the methods it applies to (none listed: every method)
-// and how a refusal names them, its help, and what it sets. Parsing, the refusal of an option the
-// method would ignore, and --help all read this table. A row without a name is a line of --help.
-struct OptionSpec {
+// A row of the table: the option and its value, the methods it applies to (none listed: every
+// method) and how a refusal names them, its help, and what it sets in a command line of type
+// Line (classroom/'s extends CommandLine). A row without a name is a line of --help.
+template <class Line>
+struct OptionRow {
     const char* name;
     const char* value;
     std::vector<Method> methods;
     const char* whose;
     const char* help;
-    void (*apply)(CommandLine&, ArgReader&);
+    std::function<void(Line&, ArgReader&)> apply;
 };
 const std::vector<Method> kBdptFamily = {Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
 const std::vector<Method> kLightPathMethods = {Method::LT, Method::IR, Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
@@ -4203,28 +3848,15 @@ const std::vector<Method> kMetropolis = {Method::PSSMLT, Method::MMLT, Method::M
 const std::vector<Method> kPrimarySample = {Method::PSSMLT, Method::MMLT};
 constexpr const char* kBdptFamilyName = "--method bdpt, vcm, mlt, pssmlt and mmlt";
 constexpr const char* kLightPathName = "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, pssmlt, mmlt)";
+constexpr const char* kMetropolisName = "--method mlt, pssmlt and mmlt";
 using CL = CommandLine;  // the table's setters are short lambdas
 using A = ArgReader;
-inline const std::vector<OptionSpec> kOptions = {
+inline const std::vector<OptionRow<CommandLine>> kOptions = {
     {nullptr, "", {}, "", "usage: bdpt SCENE [options]\n"
      "Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)\n"
      "and, beside it, a PFM with the linear values. For example:\n"
      "  ./bdpt scenes/cornell.scene --method bdpt --spp 64 --out build/cornell.png\n\nMethod", nullptr},
-    {"--method", "M", {}, "",
-     "pt   (a) eye tracing: emission counted only when a path hits a light\n"
-     "nee  (b) path tracing with next-event estimation\n"
-     "lt   (c) light tracing: light paths splatted onto the film\n"
-     "ir   (d) instant radiosity: camera paths gather virtual point lights\n"
-     "bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)\n"
-     "vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)\n"
-     "mlt  (see later) Metropolis light transport (Veach's): Markov chains of\n"
-     "     paths, mutated by replacing a few vertices (bidirectional mutation) or\n"
-     "     by moving them a little (lens and caustic perturbations);\n"
-     "     --spp N means N mutations per pixel on average\n"
-     "pssmlt (see later) primary-sample-space MLT (Kelemen's): chains that mutate\n"
-     "     the random numbers of bdpt's whole sample\n"
-     "mmlt (see later) multiplexed MLT (pbrt's): pssmlt whose state also picks one\n"
-     "     path length and one strategy (s,t), weighted by bdpt's MIS",
+    {"--method", "M", {}, "", "pt, nee, lt, ir, bdpt (default), vcm, mlt, pssmlt or mmlt (sections 7 and 8)",
      [](CL& cl, A& a) { cl.opt.method = a.choice<Method>("method", kMethodNames); }},
     {"--mis", "", {Method::NEE}, "--method nee", "nee: weight light and BSDF sampling with the power heuristic",
      [](CL& cl, A&) { cl.opt.mis = true; }},
@@ -4232,193 +3864,79 @@ inline const std::vector<OptionSpec> kOptions = {
      [](CL& cl, A& a) { cl.opt.vplPaths = int(a.integer(1, 1e6)); }},
     {"--clamp", "C", {Method::IR}, "--method ir", "ir: bound the geometry term G by C (panel (e)); prints the energy removed",
      [](CL& cl, A& a) { cl.opt.clamp = float(a.number(1e-30, 1e30)); }},
-    {"--heuristic", "H", kBdptFamily, kBdptFamilyName,
-     "bdpt, vcm, and the Metropolis methods' bdpt samples: MIS weights balance\n"
-     "(default), power, max (the slides' maximum heuristic) or uniform (1 /\nnumber of strategies able to make the path)",
+    {"--heuristic", "H", kBdptFamily, kBdptFamilyName, "bdpt's MIS weights: balance (default), power, max or uniform",
      [](CL& cl, A& a) { cl.opt.heuristic = a.choice<Heuristic>("heuristic", kHeuristicNames); }},
-    {"--radius", "R", {Method::VCM}, "--method vcm",
-     "vcm: merging radius r_0 of the first pass (default: one pixel's footprint\n"
-     "where the central camera ray meets the scene); 0: no merging, as bdpt.\n"
-     "vcm keeps a pass's light subpaths, about 140 bytes per light vertex (the\n"
-     "vertex, and a grid record if mergeable), 1 to 6 light vertices per pixel on\n"
-     "the scenes: the summary line reports both",
+    {"--radius", "R", {Method::VCM}, "--method vcm", "vcm: merging radius r_0 of the first pass; 0: no merging, as bdpt",
      [](CL& cl, A& a) { cl.opt.mergeRadius = float(a.number(0, 1e30)); }},
-    {"--alpha", "A", {Method::VCM}, "--method vcm",
-     "vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1\n(default 0.75)",
+    {"--alpha", "A", {Method::VCM}, "--method vcm", "vcm: radius schedule r(n) = r_0 n^((A-1)/2), 0 < A <= 1 (default 0.75)",
      [](CL& cl, A& a) { cl.opt.alpha = float(a.number(1e-3, 1)); }},
-    {"--strategies", "DIR", {Method::BDPT, Method::VCM}, "--method bdpt and vcm",
-     "bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length\n"
-     "(vcm: and one of all merges per path length), unweighted and MIS-weighted,\n"
-     "and two pyramid montages, into DIR (each pyramid row brightened by the\n"
-     "stops printed in its tiles' labels)",
+    {"--strategies", "DIR", {Method::BDPT, Method::VCM}, "--method bdpt and vcm", "bdpt, vcm: also write one image per strategy (s,t) into DIR",
      [](CL& cl, A& a) { cl.strategiesDir = a.value(); }},
     {"--strategy-length", "K", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)",
-     "longest path (segments) with per-strategy images (default 5)",
-     [](CL& cl, A& a) { cl.strategyLength = int(a.integer(1, 12)); }},
-    {"--large-step", "P", kPrimarySample, "--method pssmlt and mmlt",
-     "pssmlt, mmlt: probability of a large step, every number drawn afresh (0.3)",
+     "longest path (segments) with per-strategy images (default 5)", [](CL& cl, A& a) { cl.strategyLength = int(a.integer(1, 12)); }},
+    {"--large-step", "P", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: probability of a large step, every number drawn afresh (0.3)",
      [](CL& cl, A& a) { cl.opt.largeStep = float(a.number(0, 1)); }},
-    {"--sigma", "S", kPrimarySample, "--method pssmlt and mmlt",
-     "pssmlt, mmlt: a small step moves each number by a normal of deviation S,\nwrapped into [0,1) (default 0.01)",
+    {"--sigma", "S", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: a small step's deviation per number (default 0.01)",
      [](CL& cl, A& a) { cl.opt.sigma = float(a.number(1e-6, 10)); }},
-    {"--bootstrap", "N", kMetropolis, "--method mlt, pssmlt and mmlt",
-     "mlt, pssmlt, mmlt: independent samples that estimate the image's\n"
-     "normalisation b and choose the chains' starts in proportion to their\n"
-     "brightness (default 100000 for pssmlt, 1000000 for mlt and mmlt; mmlt\nspreads them over the path lengths)",
+    {"--bootstrap", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: samples that estimate b and choose the chains' starts",
      [](CL& cl, A& a) { cl.opt.bootstrap = int(a.integer(1, 1e8)); }},
-    {"--chains", "N", kMetropolis, "--method mlt, pssmlt and mmlt",
-     "mlt, pssmlt, mmlt: Markov chains, each its own random stream (default 256)",
+    {"--chains", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: Markov chains, each its own random stream (default 256)",
      [](CL& cl, A& a) { cl.opt.chains = int(a.integer(1, 1e6)); }},
-    {"--mutations", "LIST", {Method::MLT}, "--method mlt",
-     "mlt: Veach's mutations to use, among bidir, lens and caustic, comma-\n"
-     "separated; bidir is always among them (default bidir,lens,caustic)",
+    {"--mutations", "LIST", {Method::MLT}, "--method mlt", "mlt: Veach's mutations among bidir, lens, caustic (default all three)",
      [](CL& cl, A& a) { cl.opt.mutations = a.mutationList(); }},
-    {"--chain-short-paths", "", kMetropolis, "--method mlt, pssmlt and mmlt",
-     "mlt, pssmlt, mmlt: the chains render paths of one and two segments too\n"
-     "(by default a bdpt sample per pixel renders them, and the chains the rest)",
+    {"--chain-short-paths", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: the chains render paths of one and two segments too",
      [](CL& cl, A&) { cl.opt.chainShortPaths = true; }},
     {"--maxdepth", "D", {}, "", "at most D bounces (scattering vertices) per path (default 32)",
      [](CL& cl, A& a) { cl.opt.maxDepth = int(a.integer(0, 10000)); }},
-    {"--roulette", "R", kLightPathMethods, kLightPathName,
-     "lt, ir, bdpt, vcm and the Metropolis methods' bdpt samples (mlt's and\n"
-     "mmlt's own walks have chosen lengths): how subpaths end: throughput (q from\n"
-     "the throughput after --rr-start bounces, as pt and nee), albedo (q = the\n"
-     "material's albedo at every vertex, counted in bdpt's MIS densities) or off\n"
-     "(only --maxdepth); default albedo",
+    {"--roulette", "R", kLightPathMethods, kLightPathName, "how light-path methods end subpaths: throughput, albedo (default) or off",
      [](CL& cl, A& a) { cl.opt.roulette = a.choice<Roulette>("roulette", kRouletteNames); }},
-    {"--rr-start", "N", {}, "",
-     "pt, nee (and --roulette throughput): Russian roulette from bounce N on\n"
-     "(default 3); N > --maxdepth turns it off (lecture notes, page 9)",
+    {"--rr-start", "N", {}, "", "pt, nee (and --roulette throughput): Russian roulette from bounce N on (default 3)",
      [](CL& cl, A& a) { cl.opt.rrStart = int(a.integer(0, 10001)); }},
     {nullptr, "", {}, "", "Deliberate mistakes (slides: \"Non-symmetric scattering\")", nullptr},
-    {"--symmetric-refraction", "", {}, "",
-     "swap the two refraction rules: eye paths scale refracted radiance\n"
-     "like power (no eta^2), light paths scale power like radiance (eta^2)",
+    {"--symmetric-refraction", "", {}, "", "swap the eta^2 rules of eye and light paths",
      [](CL& cl, A&) { cl.conventions.symmetricRefraction = true; }},
-    {"--no-adjoint-correction", "", kLightPathMethods, kLightPathName,
-     "light paths use the shading-normal BSDF unchanged (not its adjoint)",
+    {"--no-adjoint-correction", "", kLightPathMethods, kLightPathName, "light paths use the shading-normal BSDF unchanged (not its adjoint)",
      [](CL& cl, A&) { cl.conventions.noAdjointCorrection = true; }},
-    {"--fixed-ray-offset", "", {}, "",
-     "push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)\n"
-     "instead of the hit point's error bound (see tests/thin-gap.scene)",
+    {"--fixed-ray-offset", "", {}, "", "push new rays off surfaces by 5e-5 (1 + max|p|), not by the error bound",
      [](CL& cl, A&) { cl.conventions.fixedRayOffset = true; }},
-    {"--delta-density-one", "", kBdptFamily, kBdptFamilyName,
-     "bdpt, vcm, Metropolis: after a mirror or glass, store the MIS densities\n"
-     "as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy\ns = 0",
+    {"--delta-density-one", "", kBdptFamily, kBdptFamilyName, "store the MIS densities after a mirror or glass as 1 (pbrt's)",
      [](CL& cl, A&) { cl.conventions.deltaDensityOne = true; }},
-    {"--fixed-start", "", kMetropolis, "--method mlt, pssmlt and mmlt",
-     "mlt, pssmlt, mmlt: every chain starts from one fixed state (the first bootstrap\n"
-     "sample that carries light) instead of one chosen in proportion to its\n"
-     "brightness: start-up bias, visible at short runs",
+    {"--fixed-start", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: every chain from one fixed state (start-up bias)",
      [](CL& cl, A&) { cl.opt.fixedStart = true; }},
-    {"--no-scramble", "", {}, "",
-     "--sampler sobol without its random scrambles: every pixel draws the same\n"
-     "point in each pass, so neighbouring pixels' film positions, bounces and\n"
-     "lamp points move together (a biased, patterned image)",
+    {"--no-scramble", "", {}, "", "--sampler sobol without its scrambles: one point set for every pixel",
      [](CL& cl, A&) { cl.opt.noScramble = true; }},
     {nullptr, "", {}, "", "Sampling", nullptr},
     {"--spp", "N", {}, "", "N passes of one sample per pixel (default 16)", [](CL& cl, A& a) { cl.opt.spp = int(a.integer(1, 1e8)); }},
     {"--time", "SECONDS", {}, "", "render passes until SECONDS have passed (replaces --spp)",
      [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7); }},
-    {"--sampler", "S", {}, "",
-     "where each pixel sample's numbers come from: sobol (default), the points\n"
-     "of an Owen-scrambled Sobol sequence in its first 32 dimensions (PCG32\n"
-     "past them), or random (independent PCG32 numbers throughout)",
+    {"--sampler", "S", {}, "", "sobol (default: Owen-scrambled Sobol points) or random (PCG32)",
      [](CL& cl, A& a) { cl.opt.sampler = a.choice<Sampler>("sampler", kSamplerNames); }},
     {"--seed", "S", {}, "", "seed of every pixel's random stream and scrambles (default 1)", [](CL& cl, A& a) { cl.opt.seed = uint64_t(a.integer(0, 9e15)); }},
     {"--threads", "N", {}, "", "worker threads (default: all cores); the image does not depend on N",
      [](CL& cl, A& a) { cl.opt.threads = int(a.integer(1, 1024)); }},
-    {"--profile", "", {}, "",
-     "render on one thread and print the time per sample split into tracing,\n"
-     "MIS weights, merging (vcm) and the rest (shading, sampling, camera, film),\n"
-     "from the CPU's time stamp counter; the clock adds a few per cent",
-     [](CL& cl, A&) { cl.profile = true; }},
     {nullptr, "", {}, "", "Output", nullptr},
     {"--out", "FILE.png", {}, "", "PNG file (default render.png); the PFM goes to FILE.pfm", [](CL& cl, A& a) { cl.out = a.value(); }},
     {"--res", "WxH", {}, "", "override the scene's resolution (e.g. --res 128x128)",
      [](CL& cl, A& a) {
          std::string v = a.value();
-         int w = 0, h = 0;
          char tail = 0;
-         if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+         if (std::sscanf(v.c_str(), "%dx%d%c", &cl.width, &cl.height, &tail) != 2 || cl.width < 1 || cl.height < 1 ||
+             cl.width > 16384 || cl.height > 16384)
              a.fail("option --res needs WIDTHxHEIGHT, each 1 to 16384, got '" + printable(v) + "'");
-         if (double(w) * h > 64e6) a.fail("option --res: " + printable(v) + " is larger than 64 megapixels (as in scene files)");
-         cl.width = w;
-         cl.height = h;
+         if (double(cl.width) * cl.height > 64e6) a.fail("option --res: " + printable(v) + " is larger than 64 megapixels (as in scene files)");
      }},
     {"--exposure", "STOPS", {}, "", "scale the PNG by 2^STOPS (the PFM stays linear)",
-     [](CL& cl, A& a) { cl.opt.exposure = float(a.number(-50, 50)), cl.exposureGiven = true; }},
-    {"--overwrite", "", {}, "",
-     "let --out replace a file the project ships (a scene's reference, a figure of\n"
-     "the notes: anything under scenes/ or lecture_notes/); refused without it",
-     [](CL& cl, A&) { cl.overwrite = true; }},
-    {"--quiet", "", {}, "", "no progress bar and no summary line", [](CL& cl, A&) { cl.opt.quiet = true; }},
-    {"--live", "SECONDS", {}, "",
-     "while rendering, rewrite the PNG from the passes so far at most every\n"
-     "SECONDS (whole, by rename): an image viewer that reloads it shows the image\n"
-     "converging (on a projector, say); --log is written as the passes finish",
-     [](CL& cl, A& a) { cl.liveSeconds = a.number(1e-3, 1e6); }},
-    {"--side-by-side", "\"M1,M2 OPTIONS,...\"", {}, "",
-     "render several methods at once into one labelled image, panel by panel:\n"
-     "each entry a method and its own options (\"nee,nee --mis,ir --clamp 1e-5\"),\n"
-     "every other option shared; all run together on the cores, so --time T gives\n"
-     "each the same T seconds (equal time) and --spp N the same samples. Each\n"
-     "panel shows its samples, seconds and, with --ref, its RMSE; enlarged to at\n"
-     "least 1280 pixels wide; with --live a first frame at once. Each method's\n"
-     "PFM goes beside the PNG (FILE-1-pt.pfm, ...). An entry may name its own\n"
-     "scene (\"bdpt,bdpt scenes/sds-point.scene\"): one method on two scenes",
-     [](CL& cl, A& a) {
-         std::stringstream list(a.value());
-         for (std::string entry; std::getline(list, entry, ',');) cl.sideBySide.push_back(entry);
-         if (cl.sideBySide.size() < 2 || cl.sideBySide.size() > 8) a.fail("--side-by-side needs 2 to 8 methods, separated by commas");
-     }},
+     [](CL& cl, A& a) { cl.exposure = float(a.number(-50, 50)), cl.exposureGiven = true; }},
+    {"--quiet", "", {}, "", "no progress bar and no summary line", [](CL& cl, A&) { cl.quiet = true; }},
     {"--help", "", {}, "", "this text", [](CL& cl, A&) { cl.help = true; }},
-    {nullptr, "", {}, "",
-     "Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;\n"
-     "a second Ctrl-C (a second or more after the first) abandons the render: no file, status 3.\n"
-     "Speed against accuracy", nullptr},
-    {"--ref", "FILE.pfm", {}, "",
-     "reference image (same resolution): after every pass compute RMSE, relMSE,\n"
-     "the relative bias of the mean and the firefly measure against it",
-     [](CL& cl, A& a) { cl.refPath = a.value(); }},
-    {"--log", "FILE.csv", {}, "",
-     "one row per pass: scene, method, options, pass, spp, seconds, rmse, relmse,\n"
-     "mean, bias, firefly, nan_count, rmse_without_lamp (the lamp's pixels and their\n"
-     "neighbours left out); error columns empty without --ref; written as the\n"
-     "passes finish, flushed after each (tail -f follows the run)",
-     [](CL& cl, A& a) { cl.logPath = a.value(); }},
-    {"--compare", "A.pfm B.pfm", {}, "", "print rmse, relmse and bias of A against B (e.g. two seeds of a reference)",
-     [](CL& cl, A& a) { cl.pfmA = a.value(), cl.pfmB = a.value(); }},
-    {"--average", "A.pfm B.pfm", {}, "",
-     "write the mean of A and B to --out (required; and its PFM): a reference\nfrom two seeds",
-     [](CL& cl, A& a) { cl.average = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
-    {"--ratio", "A.pfm B.pfm", {}, "",
-     "write A/B over 4x4-pixel blocks to --out (required) in false colour\n"
-     "(white: equal, red: A brighter, blue: A darker, full colour at one stop; the\n"
-     "PFM holds the ratios), enlarged to at least 560 pixels under the files' names,\n"
-     "the ratio of the means and the colour key; print its percentiles: where two\n"
-     "methods differ",
-     [](CL& cl, A& a) { cl.ratio = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
-    {"--failure-table", "LOG.csv...", {}, "",
-     "print the failure table (markdown, as Appendix A of the notes has it) from\n"
-     "such logs: slope of log(rmse) against log(seconds), bias, fireflies, NaN count",
-     [](CL& cl, A& a) {
-         cl.failureLogs.assign(a.args.begin() + a.i + 1, a.args.end());
-         if (cl.failureLogs.empty()) a.fail("--failure-table needs log files");
-         a.i = a.args.size();
-     }},
-    {nullptr, "", {}, "",
-     "Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene\n"
-     "file or option, 3 abandoned by a second Ctrl-C (nothing written), 4 out of memory (nothing\n"
-     "written), 130 interrupted by Ctrl-C (the completed passes written).\n"
-     "The make targets (charts, efficiency, bench, panels, ...): make help. All write into build/ but\n"
-     "make figures and make refs, which rewrite the committed figures, tables and references.", nullptr},
+    {nullptr, "", {}, "", "Exit status: 0 done, 1 an output file cannot be written, 2 bad scene file or option.", nullptr},
 };
 
-// --help, from the table: each option's name and value, its help beside it from column 20.
-inline std::string usage() {
+// --help, from a table: each option's name and value, its help beside it from column 20.
+template <class Line>
+std::string usage(const std::vector<OptionRow<Line>>& table) {
     std::string text;
-    for (const OptionSpec& o : kOptions) {
+    for (const OptionRow<Line>& o : table) {
         if (!o.name) { text += std::string(o.help) + "\n"; continue; }
         std::string head = "  " + std::string(o.name) + (*o.value ? " " + std::string(o.value) : "");
         text += head + std::string(head.size() < 20 ? 20 - head.size() : 2, ' ');
@@ -4428,16 +3946,42 @@ inline std::string usage() {
     return text;
 }
 
-// What no single option can check: the combinations, and options the chosen method would ignore.
-inline void checkCombinations(CommandLine& cl) {
+// The words of a command line, each an option of the table, a value of one, or the scene's path;
+// suggest(word) names the option a misspelt one probably meant ("" if none; classroom/'s).
+template <class Line>
+Line parseOptions(const std::vector<std::string>& args, const std::vector<OptionRow<Line>>& table,
+                  std::string (*suggest)(const std::string&) = nullptr) {
+    Line cl;
+    ArgReader in{args};
+    for (; in.i < args.size(); ++in.i) {
+        const std::string& a = args[in.i] == "-h" ? "--help" : args[in.i];
+        if (a.size() > 2 && a[0] == '-' && a[1] == '-' && !cl.given.insert(a).second)
+            in.fail("option " + printable(a) + " given twice (which one did you mean?)");
+        auto option = std::find_if(table.begin(), table.end(), [&](const OptionRow<Line>& o) { return o.name && a == o.name; });
+        if (option != table.end()) {
+            option->apply(cl, in);
+        } else if (!a.empty() && a[0] == '-') {
+            size_t equals = a.find('=');
+            if (equals != std::string::npos)
+                in.fail("unknown option '" + printable(a) + "' (write '" + printable(a.substr(0, equals)) + " " + printable(a.substr(equals + 1)) + "')");
+            std::string near = suggest ? suggest(a) : "";
+            in.fail("unknown option '" + printable(a) + "'" + (near.empty() ? "" : " (did you mean " + near + "?)"));
+        } else if (cl.scenePath.empty()) {
+            cl.scenePath = a;
+        } else {
+            in.fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
+        }
+    }
+    return cl;
+}
+
+// What no single option can check: the combinations, and options the chosen method would ignore
+// (not checked where the methods are named elsewhere: classroom/'s side by side).
+template <class Line>
+void checkCombinations(Line& cl, const std::vector<OptionRow<Line>>& table, bool checkMethods = true) {
     auto given = [&](const char* o) { return cl.given.count(o) > 0; };
-    if (!hasExtension(cl.out, ".png")) ArgReader::fail("--out must name a .png file (the PFM goes beside it), got '" + printable(cl.out) + "'");
-    if (!cl.logPath.empty() && !hasExtension(cl.logPath, ".csv")) ArgReader::fail("--log must name a .csv file, got '" + printable(cl.logPath) + "'");
-    if ((cl.average || cl.ratio) && !given("--out"))
-        ArgReader::fail(std::string(cl.average ? "--average" : "--ratio") + " writes an image: name it with --out FILE.png");
-    if (!cl.pfmA.empty()) return;
-    for (const OptionSpec& o : kOptions)  // (side by side, each entry's own line is checked with its method)
-        if (o.name && given(o.name) && !o.methods.empty() && cl.sideBySide.empty() &&
+    for (const OptionRow<Line>& o : table)
+        if (checkMethods && o.name && given(o.name) && !o.methods.empty() &&
             std::find(o.methods.begin(), o.methods.end(), cl.opt.method) == o.methods.end())
             ArgReader::fail(std::string(o.name) + " applies to " + o.whose + ", not to --method " + methodName(cl.opt.method));
     if (given("--strategy-length") && cl.strategiesDir.empty()) ArgReader::fail("--strategy-length applies with --strategies DIR");
@@ -4447,178 +3991,9 @@ inline void checkCombinations(CommandLine& cl) {
         ArgReader::fail(std::string("--rr-start applies to pt, nee and --roulette throughput; --method ") + methodName(cl.opt.method) +
                         (cl.opt.roulette == Roulette::Albedo ? " ends its subpaths by --roulette albedo (the default), which acts from the first bounce on"
                                                              : " has --roulette off: no roulette at all"));
-    for (const char* alone : {"--method", "--log", "--strategies", "--profile"})
-        if (!cl.sideBySide.empty() && given(alone))
-            ArgReader::fail(std::string(alone) + " does not go with --side-by-side" +
-                            (std::string(alone) == "--method" ? ": name the methods in its list" : ": render that method alone"));
     if (given("--time") && given("--spp"))
         ArgReader::fail("--time and --spp both given: --time renders passes until the time is up, --spp a number of them; give one");
     if (!cl.strategiesDir.empty()) cl.opt.strategyMaxLength = cl.strategyLength;
-}
-
-// The option a misspelt one probably meant: the closest name, or what other programs call it.
-inline std::string suggestedOption(const std::string& word) {
-    static const std::map<std::string, std::string> otherNames = {
-        {"--samples", "--spp"}, {"--output", "--out"}, {"--resolution", "--res"}, {"--depth", "--maxdepth"},
-        {"--integrator", "--method"}, {"--mis-heuristic", "--heuristic"}, {"--reference", "--ref"}};
-    if (otherNames.count(word)) return otherNames.at(word);
-    std::vector<std::string> names;
-    for (const OptionSpec& o : kOptions)
-        if (o.name) names.push_back(o.name);
-    return closestWord(word, names);
-}
-
-inline CommandLine parseCommandLine(const std::vector<std::string>& args) {
-    CommandLine cl;
-    ArgReader in{args};
-    for (; in.i < args.size(); ++in.i) {
-        const std::string& a = args[in.i] == "-h" ? "--help" : args[in.i];
-        if (a.size() > 2 && a[0] == '-' && a[1] == '-' && !cl.given.insert(a).second)
-            in.fail("option " + printable(a) + " given twice (which one did you mean?)");
-        auto option = std::find_if(kOptions.begin(), kOptions.end(), [&](const OptionSpec& o) { return o.name && a == o.name; });
-        if (option != kOptions.end()) {
-            option->apply(cl, in);
-        } else if (!a.empty() && a[0] == '-') {
-            size_t equals = a.find('=');
-            if (equals != std::string::npos)
-                in.fail("unknown option '" + printable(a) + "' (write '" + printable(a.substr(0, equals)) + " " + printable(a.substr(equals + 1)) + "')");
-            std::string near = suggestedOption(a);
-            in.fail("unknown option '" + printable(a) + "'" + (near.empty() ? "" : " (did you mean " + near + "?)"));
-        } else if (cl.scenePath.empty()) {
-            cl.scenePath = a;
-        } else {
-            in.fail("more than one scene file ('" + printable(cl.scenePath) + "', '" + printable(a) + "')");
-        }
-    }
-    if (!cl.help && cl.failureLogs.empty() && cl.pfmA.empty() && cl.scenePath.empty()) in.fail("no scene file given");
-    if (!cl.help && cl.failureLogs.empty()) checkCombinations(cl);
-    return cl;
-}
-
-inline std::string optionsLabel(const RenderOptions& o) {  // what distinguishes a run in the charts
-    std::ostringstream s;
-    if (o.method == Method::NEE && o.mis) s << "--mis ";
-    if (o.method == Method::IR) s << "--vpls " << o.vplPaths << (o.clamp > 0 ? " --clamp " : "") << (o.clamp > 0 ? std::to_string(o.clamp) : "") << " ";
-    if (o.method == Method::BDPT || o.method == Method::VCM) s << "--heuristic " << kHeuristicNames[int(o.heuristic)] << " ";
-    if (o.method == Method::VCM) s << "--alpha " << o.alpha << " ";
-    if (isMetropolis(o.method) && o.fixedStart) s << "--fixed-start ";
-    if (o.sampler != Sampler::Sobol) s << "--sampler " << kSamplerNames[int(o.sampler)] << " ";
-    if (o.noScramble) s << "--no-scramble ";
-    if (o.maxDepth != 32) s << "--maxdepth " << o.maxDepth;
-    std::string r = s.str();
-    while (!r.empty() && r.back() == ' ') r.pop_back();
-    return r;
-}
-
-// The failure table from --log files: for each run, the slope of log(rmse) against log(seconds)
-// (least squares over the passes after the first tenth of the time; -0.5 for an unbiased method
-// that converges, about 0 for one that is biased or lacks the technique), and the last pass's
-// relative bias of the mean, firefly measure and NaN count.
-inline int printFailureTable(const std::vector<std::string>& logs, std::ostream& out, std::ostream& err) {
-    out << "| scene | method | slope | bias | fireflies | NaN |\n|---|---|---|---|---|---|\n";
-    for (const std::string& path : logs) {
-        std::ifstream in(path);
-        if (!in) { err << path << ":0: cannot open log\n"; return 2; }
-        std::string line, scene, method, options;
-        std::vector<double> logT, logE;
-        std::vector<std::string> last;
-        double lastSeconds = 0;
-        std::vector<std::pair<double, double>> rows;
-        std::getline(in, line);  // header
-        while (std::getline(in, line)) {
-            std::vector<std::string> f;
-            std::stringstream ss(line);
-            for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
-            if (f.size() < 12 || f[6].empty()) continue;
-            scene = f[0]; method = f[1]; options = f[2];
-            rows.push_back({std::atof(f[5].c_str()), std::atof(f[6].c_str())});
-            lastSeconds = rows.back().first;
-            last = f;
-        }
-        if (rows.empty()) { err << path << ":0: no rows with an error (was --ref given?)\n"; return 2; }
-        double sx = 0, sy = 0, sxx = 0, sxy = 0;
-        int n = 0;
-        for (auto [t, e] : rows)
-            if (t >= 0.1 * lastSeconds && t > 0 && e > 0) {
-                double x = std::log(t), y = std::log(e);
-                sx += x; sy += y; sxx += x * x; sxy += x * y; ++n;
-            }
-        double slope = n > 1 && n * sxx - sx * sx > 0 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0;
-        // A slope over a few passes is noise (a single pass's error spreads by tens of per cent), and
-        // so is a bias measured on them: such a row is marked, and said so.
-        constexpr int kFewPasses = 8;
-        if (n < kFewPasses)
-            err << path << ":0: warning: only " << n << " passes after the first tenth of the time: its slope and bias are "
-                << "noise, not the method's (a longer --time, or a quieter machine)\n";
-        char row[512];
-        std::snprintf(row, sizeof row, "| %s | %s%s%s | %.2f%s | %+.1f%%%s | %.0f | %s |\n", scene.c_str(), method.c_str(),
-                      options.empty() ? "" : " ", options.c_str(), slope, n < kFewPasses ? " (few passes)" : "",
-                      100 * std::atof(last[9].c_str()), n < kFewPasses ? " (few passes)" : "", std::atof(last[10].c_str()),
-                      last[11].c_str());
-        out << row;
-    }
-    return 0;
-}
-
-// --ratio's PNG: the false-colour ratio enlarged to at least 560 pixels across (two side by side
-// fill a slide), under a strip that names the division, gives the ratio of the means and draws the
-// colour key from 1/2 (blue) through 1 (white) to 2 (red).
-inline std::vector<unsigned char> ratioFigure(const Image& ratio, const std::string& title, const std::string& means, int& figureW, int& figureH) {
-    const int zoom = std::max(1, (560 + ratio.width - 1) / ratio.width), W = ratio.width * zoom;
-    const int scale = labelScale(W, std::max(labelWidth(title, 1), labelWidth(means, 1)));
-    const int gap = 2 * scale, line = 7 * scale, barH = 3 * scale, strip = 2 * line + barH + line + gap;
-    figureW = W + 2 * gap, figureH = strip + ratio.height * zoom + 2 * gap;
-    std::vector<unsigned char> canvas(size_t(figureW) * figureH * 3, 24);
-    blitZoomed(canvas, figureW, toSRGBBytes(ratioColours(ratio), 0), ratio.width, ratio.height, zoom, gap, gap + strip);
-    Image key(W, 1);
-    for (int x = 0; x < W; ++x) key.pixels[x] = Vec3(std::exp2(2.0f * (x + 0.5f) / W - 1));  // log2 from -1 to 1
-    std::vector<unsigned char> keyRGB = toSRGBBytes(ratioColours(key), 0);
-    for (int y = 0; y < barH; ++y) blitZoomed(canvas, figureW, keyRGB, W, 1, 1, gap, gap + 2 * line + y);
-    drawLabel(canvas, figureW, figureH, gap, gap, title, scale);
-    drawLabel(canvas, figureW, figureH, gap, gap + line, means, scale);
-    const int keyY = gap + 2 * line + barH + scale;
-    drawLabel(canvas, figureW, figureH, gap, keyY, "1/2", scale);
-    drawLabel(canvas, figureW, figureH, gap + W / 2 - labelWidth("1", scale) / 2, keyY, "1", scale);
-    drawLabel(canvas, figureW, figureH, gap + W - labelWidth("2", scale), keyY, "2", scale);
-    return canvas;
-}
-
-inline std::string fileStem(const std::string& path) {  // "build/notes/pool-lt.pfm" -> "pool-lt"
-    std::string name = replaceExtension(path, "");
-    size_t slash = name.find_last_of('/');
-    return slash == std::string::npos ? name : name.substr(slash + 1);
-}
-
-// --ratio: A/B over 4x4 blocks as a labelled false-colour PNG and a PFM of the ratios (0 where
-// undefined), and its percentiles on out. Returns the exit status.
-inline int writeRatio(const Image& a, const Image& b, const std::string& nameA, const std::string& nameB, const std::string& png,
-                      std::ostream& out, std::ostream& err) {
-    Image r = blockRatio(a, b, 4);
-    std::vector<float> q;
-    for (const Vec3& p : r.pixels)
-        if (std::isfinite(p.x)) q.push_back(p.x);
-    if (q.empty()) {
-        err << "bdpt: cannot divide: B is black in every 4x4 block, so A/B is nowhere defined\n";
-        return 2;
-    }
-    std::sort(q.begin(), q.end());
-    auto pct = [&](double f) { return q[size_t(f * (q.size() - 1))]; };
-    size_t off = size_t(std::count_if(q.begin(), q.end(), [](float v) { return std::fabs(std::log2(v)) > 0.5f; }));
-    out << "ratio of means " << imageMean(a) / imageMean(b) << "; A/B over 4x4 blocks: 5% " << pct(0.05) << ", median "
-        << pct(0.5) << ", 95% " << pct(0.95) << "; " << 100.0 * off / std::max<size_t>(1, q.size())
-        << "% of the blocks more than half a stop apart\n";
-    std::string pfm = replaceExtension(png, ".pfm");
-    char means[64];
-    std::snprintf(means, sizeof means, "ratio of means %.3f", imageMean(a) / imageMean(b));
-    int figureW, figureH;
-    std::vector<unsigned char> figure = ratioFigure(r, fileStem(nameA) + " / " + fileStem(nameB), means, figureW, figureH);
-    for (Vec3& p : r.pixels) p = std::isfinite(p.x) ? p : Vec3(0);
-    if (writePNGBytes(figure, figureW, figureH, png) && writePFM(r, pfm)) {
-        out << "wrote " << png << " and " << pfm << "\n";
-        return 0;
-    }
-    err << "bdpt: cannot write " << png << " or " << pfm << "\n";
-    return 1;
 }
 
 // What a sample costs in rays, the slides' "more costly" counted: the summary line's figure.
@@ -4630,609 +4005,50 @@ inline std::string raysPerSample(const RenderResult& r) {
     return text;
 }
 
-// Why a file cannot be written at path ("" if it can): checked before any work, so that a long
-// render never ends in "cannot write".
-inline std::string unwritable(const std::string& path) {
-    struct stat st;
-    if (stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return "it is a folder";
-    size_t slash = path.find_last_of('/');
-    std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
-    if (stat(dir.c_str(), &st) != 0) return "the folder " + dir + " does not exist";
-    if (!S_ISDIR(st.st_mode)) return dir + " is not a folder";
-    if (access(dir.c_str(), W_OK) != 0) return "no permission to write in " + dir;
-    if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return "it is not a regular file";
-    // /proc, /sys and the like pass the permission check as root and refuse files only when one
-    // is made: make one now (and remove it), not after the render.
-    std::string probe = dir + "/.bdpt-probe-" + std::to_string(getpid());
-    std::FILE* f = std::fopen(probe.c_str(), "wb");
-    if (!f) return "no file can be made in " + dir + " (" + std::strerror(errno) + ")";
-    std::fclose(f);
-    std::remove(probe.c_str());
-    return "";
+// What a render did: its passes and time, the image's mean, what it cost in rays, what it wrote.
+inline std::string summaryLine(const CommandLine& cl, const RenderResult& r, const std::string& pfm) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);  // a hundredth: the clock's noise is larger
+    std::ostringstream line;
+    line << cl.scenePath << ": " << r.passes << " samples per pixel in " << seconds << " s, mean " << imageMean(r.image) << ", "
+         << r.nonFinite << " non-finite samples dropped, " << raysPerSample(r) << "; wrote " << cl.out << " and " << pfm << "\n";
+    return line.str();
 }
 
-inline bool sameFile(const std::string& a, const std::string& b) {
-    struct stat sa, sb;
-    return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+// The scene as the command line asks for it: its resolution, its mistakes, its PNG's exposure.
+inline void applyToScene(CommandLine& cl, Scene& scene) {
+    if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
+    scene.conventions = cl.conventions;
+    if (!cl.exposureGiven) cl.exposure = scene.exposure;
 }
 
-// mkdir -p; false if some part cannot be made.
-inline bool makeFolders(const std::string& path) {
-    for (size_t i = 1; i <= path.size(); ++i) {
-        if (i < path.size() && path[i] != '/') continue;
-        std::string part = path.substr(0, i);
-        struct stat st;
-        if (stat(part.c_str(), &st) == 0 ? !S_ISDIR(st.st_mode) : mkdir(part.c_str(), 0777) != 0) return false;
-    }
-    return true;
-}
-
-// A file the project ships, which a careless --out would lose: an existing file under a folder
-// scenes/ or lecture_notes/ (a scene's reference, a figure of the notes).
-inline bool shippedFile(const std::string& path) {
-    char resolved[PATH_MAX];
-    if (!realpath(path.c_str(), resolved)) return false;  // not there: nothing to lose
-    std::string p = resolved;
-    return p.find("/scenes/") != std::string::npos || p.find("/lecture_notes/") != std::string::npos;
-}
-
-// Every file the render will write, checked (and --strategies DIR made) before it starts.
-inline std::string checkOutputs(const CommandLine& cl, const std::string& pfm) {
-    std::vector<std::string> files = {cl.out, pfm};
-    if (!cl.logPath.empty()) files.push_back(cl.logPath);
-    for (const std::string& f : files) {
-        if (sameFile(f, cl.scenePath) || (!cl.refPath.empty() && sameFile(f, cl.refPath)))
-            return "will not write " + f + ": it is an input of this run";
-        if (!cl.overwrite && shippedFile(f))
-            return "will not overwrite " + f + ": the project ships it (a scene's reference or a figure of the notes); give --overwrite to replace it";
-        std::string why = unwritable(f);
-        if (!why.empty()) return "cannot write " + f + ": " + why;
-    }
-    if (!cl.strategiesDir.empty()) {
-        if (!makeFolders(cl.strategiesDir)) return "cannot make the folder " + cl.strategiesDir + " for the strategy images";
-        std::string why = unwritable(cl.strategiesDir + "/x.png");
-        if (!why.empty()) return "cannot write into " + cl.strategiesDir + ": " + why;
-    }
-    return "";
-}
-
-// Mistakes in a scene that still renders, but not as its author meant: said before the work.
-//  - one light takes nearly all of the choice by power (a huge dim sky sphere starves a lamp);
-//  - a light whose emitting side faces a surface right in front of it, or nothing at all (a
-//    lamp under a ceiling with its u and v swapped: it lights a sliver of ceiling, and the room
-//    renders almost black);
-//  - a quick preview sees no light at all (a lamp facing away, or a light in a closed box).
-// What a render will hold, in bytes, known before it starts: per pixel the pass sums and squares
-// (6 doubles), the pass, the image and its variance (3 Vec3), the PNG's bytes, the log's running
-// mean, two sums per strategy image and the image written; vcm's light subpaths and grid of a
-// pass: a vertex and its grid record (with the grid's bucket) per light vertex, at most 12 a pixel
-// (the scenes have 1 to 5.4; its summary line reports what a run took); mlt's pass image and
-// its chains' splats of one pass, bounded by 128 bytes a pixel; its chains' states do not grow
-// with the image. Appendix A gives the measurements behind both bounds.
-inline double estimatedBytes(const Scene& scene, const RenderOptions& opt, bool logging) {
-    int images = strategyImageCount(opt);
-    double perPixel = 6 * sizeof(double) + 3 * sizeof(Vec3) + 3 + (logging ? 3 * sizeof(double) + sizeof(Vec3) : 0) +
-                      images * (2 * 3 * sizeof(double) + sizeof(Vec3) + 3) +
-                      (opt.method == Method::VCM ? 12 * (sizeof(PathVertex) + sizeof(VcmPass::Stored) + 8) + sizeof(Subpath) : 0) +
-                      (isMetropolis(opt.method) ? 128 : 0);
-    return perPixel * scene.camera.width * scene.camera.height;
-}
-
-// The memory this process may use: the machine's, or less where `ulimit -v` says so.
-inline double memoryLimitBytes() {
-    double machine = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
-    struct rlimit limit;
-    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) return std::min(machine, double(limit.rlim_cur));
-    return machine;
-}
-
-inline void warnAboutScene(const Scene& scene, const RenderOptions& opt, std::ostream& err) {
-    for (size_t i = 0; i < scene.lights.size() && scene.lights.size() > 1; ++i) {
-        float share = lightChoiceProbability(scene, int(i));
-        char percent[32];
-        std::snprintf(percent, sizeof percent, "%.7g", 100.0 * share);
-        if (share > 0.999f)
-            err << scene.file << ":" << scene.lights[i].line << ": warning: this light takes " << percent
-                << "% of the light choice (by power): the others are almost never sampled, and where they matter nee, lt "
-                   "and bdpt will be noisy\n";
-    }
-    for (size_t i = 0; i < scene.lights.size(); ++i) {
-        const Light& light = scene.lights[i];
-        if (light.type != Light::Area) continue;
-        // Its light, sampled as light paths leave it, from its emitting side and, as if turned
-        // around, from the other: the share that reaches a surface farther than a twentieth of
-        // the lamp's size (closer: the ceiling it hangs under). A lamp that lights little on its
-        // side and much on the other was meant the other way round; a lamp that lights nothing
-        // either way (a sky, a lamp over an open floor) is left alone.
-        const float near = 0.05f * std::sqrt(scene.shapes[light.shape].area);
-        const int rays = 256;
-        int lit[2] = {0, 0};
-        float nearest = kInf;
-        Rng rng = makeRng(0x1a4e, i, 0);
-        for (int r = 0; r < rays; ++r) {
-            float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
-            SurfacePoint sp = sampleShapePoint(scene, light.shape, u1, u2);
-            for (int side = 0; side < 2; ++side) {
-                Vec3 n = side == 0 ? sp.ng : -sp.ng;
-                Hit hit = intersect(scene, spawnRay(sp, Frame(n).toWorld(sampleCosineHemisphere(u3, u4))));
-                lit[side] += hit.found() && hit.t >= near;
-                if (side == 0 && hit.found() && hit.t < near) nearest = std::min(nearest, hit.t);
-            }
-        }
-        if (!(lit[0] < rays / 10 && lit[1] > rays / 2)) continue;
-        char text[64];
-        std::snprintf(text, sizeof text, "a surface %.3g away", double(nearest));
-        err << scene.file << ":" << light.line << ": warning: this light's emitting side (u x v for a quad) faces "
-            << (nearest < kInf ? text : "nothing") << ": " << 100 * lit[0] / rays << "% of its light gets farther, "
-            << 100 * lit[1] / rays << "% would from its other side; to turn it around, swap its u and v\n";
-    }
-    Scene preview = scene;
-    setResolution(preview.camera, 32, 32);
-    RenderOptions o;
-    o.method = opt.method == Method::VCM ? Method::VCM : Method::BDPT;  // vcm sees what bdpt cannot
-    o.spp = 16;
-    o.maxDepth = std::min(opt.maxDepth, 8);
-    o.quiet = true;
-    o.threads = 1;
-    // Every sample is >= 0: if the first pass sees light, all 16 would. Most scenes stop there.
-    RenderOptions firstPass = o;
-    firstPass.spp = 1;
-    if (imageMean(render(preview, firstPass).image) == 0 && imageMean(render(preview, o).image) == 0)
-        err << scene.file << ": warning: a quick preview (" << methodName(o.method) << ", 32x32, 16 samples per pixel) sees no light at all: is a light "
-               "facing away (a quad emits from its u x v side only), or shut in?\n";
-}
-
-// --compare, --average and --ratio: two PFM images in, numbers or an image out. Returns the exit status.
-inline int runImageTool(const CommandLine& cl, std::ostream& out, std::ostream& err) {
-    std::string problem = cl.average || cl.ratio ? checkOutputs(cl, replaceExtension(cl.out, ".pfm")) : "";
-    if (!problem.empty()) {
-        err << "bdpt: " << problem << "\n";
-        return 1;
-    }
-    Image a, b;
-    const char* verb = cl.average ? "average" : cl.ratio ? "divide" : "compare";
-    for (auto [path, img] : {std::make_pair(&cl.pfmA, &a), std::make_pair(&cl.pfmB, &b)}) {
-        struct stat st;
-        const char* problem = stat(path->c_str(), &st) != 0 ? "does not exist" : !readPFM(*path, *img) ? "is not a PFM image (as bdpt writes)" : nullptr;
-        if (problem) {
-            err << "bdpt: cannot " << verb << ": " << *path << " " << problem << "\n";
-            return 2;
-        }
-    }
-    if (a.width != b.width || a.height != b.height) {
-        err << "bdpt: cannot " << verb << ": " << cl.pfmA << " is " << a.width << "x" << a.height << ", " << cl.pfmB << " is " << b.width
-            << "x" << b.height << "\n";
-        return 2;
-    }
-    if (cl.ratio) return writeRatio(a, b, cl.pfmA, cl.pfmB, cl.out, out, err);
-    if (!cl.average) {
-        ErrorMetrics m = compareToReference(a, b);
-        out << "rmse " << m.rmse << " relmse " << m.relMse << " bias " << m.bias << " mean " << m.mean << " rmse_without_lamp "
-            << m.rmseWithoutLamp << "\n";
-        return 0;
-    }
-    for (size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = (a.pixels[i] + b.pixels[i]) * 0.5f;
-    std::string pfm = replaceExtension(cl.out, ".pfm");
-    if (writePNG(a, cl.out, cl.opt.exposure) && writePFM(a, pfm)) {
-        out << "wrote " << cl.out << " and " << pfm << "\n";
-        return 0;
-    }
-    err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
-    return 1;
-}
-
-// Before any work: every output writable, the memory there, the reference readable and of the
-// image's size. Returns the exit status if the render cannot go ahead, else 0.
-inline int checkBeforeRendering(const CommandLine& cl, const Scene& scene, const std::string& pfm, Image& ref, std::ostream& err) {
-    std::string problem = checkOutputs(cl, pfm);
-    if (!problem.empty()) {
-        err << "bdpt: " << problem << " (nothing rendered)\n";
-        return 1;
-    }
-    double needed = estimatedBytes(scene, cl.opt, !cl.logPath.empty()), limit = memoryLimitBytes();
-    if (needed + 200e6 > limit) {  // 200 MB for the program, its threads' stacks and the scene
-        err << "bdpt: this render needs about " << std::setprecision(2) << std::fixed << needed / 1e9 << " GB for " << scene.camera.width
-            << "x" << scene.camera.height << " pixels, more than the " << limit / 1e9
-            << " GB this process may use (the machine's memory or ulimit -v): use a smaller --res (nothing rendered)\n";
-        return 1;
-    }
-    if (cl.refPath.empty()) return 0;
-    if (!readPFM(cl.refPath, ref)) {
-        err << cl.refPath << ": cannot read the reference (a PFM written by bdpt)\n";
-        return 2;
-    }
-    if (ref.width != scene.camera.width || ref.height != scene.camera.height) {
-        err << cl.refPath << ": the reference is " << ref.width << "x" << ref.height << ", the image " << scene.camera.width << "x"
-            << scene.camera.height << " (use --res)\n";
-        return 2;
-    }
-    return 0;
-}
-
-// --log and --live, after every pass: the running mean against the reference, with the time spent
-// measuring taken out of the clock. The log is flushed after each pass (tail -f follows a run);
-// --live rewrites the PNG from the running mean (whole, by rename).
-struct PassLog {
-    const CommandLine& cl;
-    const Image& ref;
-    std::ofstream log;
-    std::string sceneName;
-    std::vector<double> running;
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), lastLive = start;
-    double measuring = 0;
-    PassLog(const CommandLine& c, const Scene& scene, const Image& reference)
-        : cl(c), ref(reference), running(3 * size_t(scene.camera.width) * scene.camera.height, 0.0) {
-        sceneName = fileStem(cl.scenePath);
-    }
-    bool open() {
-        log.open(cl.logPath);
-        log << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count,rmse_without_lamp\n";
-        return bool(log.flush());
-    }
-    void add(int p, const std::vector<Vec3>& pass, long long nonFinite, int width, int height) {
-        double seconds = secondsSince(start) - measuring;
-        auto t0 = std::chrono::steady_clock::now();
-        Image mean(width, height);
-        for (size_t i = 0; i < pass.size(); ++i)
-            for (int c = 0; c < 3; ++c) mean.pixels[i][c] = float((running[3 * i + c] += pass[i][c]) / (p + 1));
-        if (cl.liveSeconds > 0 && secondsSince(lastLive) >= cl.liveSeconds) {
-            writePNG(mean, cl.out, cl.opt.exposure);  // a failure here shows again at the end
-            lastLive = std::chrono::steady_clock::now();
-        }
-        if (!cl.logPath.empty()) {
-            log << sceneName << "," << methodName(cl.opt.method) << "," << optionsLabel(cl.opt) << "," << p + 1 << "," << p + 1 << "," << seconds << ",";
-            if (ref.width > 0) {
-                ErrorMetrics m = compareToReference(mean, ref);
-                log << m.rmse << "," << m.relMse << "," << m.mean << "," << m.bias << "," << m.firefly << "," << nonFinite << "," << m.rmseWithoutLamp << "\n";
-            } else {
-                log << ",," << imageMean(mean) << ",,," << nonFinite << ",\n";
-            }
-            log.flush();
-        }
-        measuring += secondsSince(t0);
-    }
-};
-
-inline double threadCpuSeconds() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-// --profile's line: the render's CPU time per sample, split as the clock's ticks split.
-inline void printProfile(const CostClock& clock, double cpuSeconds, double samples, std::ostream& out) {
-    double ticks = 0;
-    for (uint64_t t : clock.ticks) ticks += double(t);
-    const double perSample = 1e6 * cpuSeconds / std::max(1.0, samples), share = 1 / std::max(1.0, ticks);
-    const char* names[] = {"shading and sampling", "tracing", "MIS", "merging"};
-    char text[128];
-    std::snprintf(text, sizeof text, "profile (one thread): %.3g us per sample:", perSample);
-    out << text;
-    for (Cost part : {Cost::Tracing, Cost::Mis, Cost::Merging, Cost::Other}) {
-        double f = double(clock.ticks[int(part)]) * share;
-        std::snprintf(text, sizeof text, "%s %s %.3g (%.0f%%)", part == Cost::Tracing ? "" : ",", names[int(part)], f * perSample, 100 * f);
-        out << text;
-    }
-    out << "\n";
-}
-
-// --side-by-side: several methods on one scene at once, each in a thread of its own (with its
-// share of the cores), so that they have the same time, and one labelled image of their running
-// means, rewritten every --live seconds from the first moment on.
-struct SideBySidePanel {
-    std::string label;  // the entry as written: "ir --clamp 1e-5"
-    CommandLine cl;
-    Scene scene;        // its own: the deliberate mistakes are the scene's
-    std::mutex lock;    // guards what follows, which the render's thread writes and the frames read
-    std::vector<double> sum;
-    int passes = 0;
-    double seconds = 0;
-    bool done = false, outOfMemory = false;
-    RenderResult result;
-};
-
-// The panels in a grid (up to 3 across, else two rows), each enlarged by a whole factor so that
-// the image is at least about 1280x720: a projector's size, read from the back of a room.
-struct SideBySideLayout {
-    int W, H, cols, rows, zoom, scale, strip, gap, panelW, panelH, canvasW, canvasH;  // W x H: the image's size
-    // widest: the widest line of text at scale 1 (drawLabel's width), which must fit a panel
-    SideBySideLayout(int n, int width, int height, int widest) : W(width), H(height) {
-        cols = n <= 3 ? n : (n + 1) / 2;
-        rows = (n + cols - 1) / cols;
-        zoom = std::max({1, (1280 + cols * W - 1) / (cols * W), (600 + rows * H - 1) / (rows * H)});
-        panelW = W * zoom, panelH = H * zoom;
-        scale = labelScale(panelW, widest);
-        gap = 2 * scale;
-        strip = 3 * 7 * scale + gap;        // three lines of text above each panel
-        canvasW = cols * (panelW + gap) + gap, canvasH = rows * (strip + panelH + gap) + gap;
-    }
-};
-
-inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const Image& ref,
-                                                  const SideBySideLayout& L) {
-    std::vector<unsigned char> canvas(size_t(L.canvasW) * L.canvasH * 3, 24);
-    for (size_t i = 0; i < panels.size(); ++i) {
-        SideBySidePanel& panel = *panels[i];
-        const int W = L.W, H = L.H;
-        Image mean(W, H);
-        int passes;
-        double seconds;
-        {
-            std::lock_guard<std::mutex> hold(panel.lock);
-            passes = panel.passes, seconds = panel.seconds;
-            for (size_t p = 0; passes > 0 && p < mean.pixels.size(); ++p)
-                for (int c = 0; c < 3; ++c) mean.pixels[p][c] = float(panel.sum[3 * p + c] / passes);
-        }
-        std::vector<unsigned char> rgb = toSRGBBytes(mean, panel.cl.opt.exposure);
-        const int x0 = L.gap + int(i % L.cols) * (L.panelW + L.gap), y0 = L.gap + int(i / L.cols) * (L.strip + L.panelH + L.gap);
-        blitZoomed(canvas, L.canvasW, rgb, W, H, L.zoom, x0, y0 + L.strip);
-        std::string lines[3] = {panel.label, passes > 0 ? std::to_string(passes) + " spp  " + duration(seconds) : "starting", ""};
-        if (ref.width > 0 && passes > 0) {
-            char text[32];
-            std::snprintf(text, sizeof text, "rmse %.3g", compareToReference(mean, ref).rmse);
-            lines[2] = text;
-        }
-        for (int line = 0; line < 3; ++line) drawLabel(canvas, L.canvasW, L.canvasH, x0, y0 + line * 7 * L.scale, lines[line], L.scale);
-    }
-    return canvas;
-}
-
-// The panels' own command lines: the scene, the entry's method and options, and every option of
-// the whole line but those that name the one image (--out, --live) and --side-by-side itself.
-inline std::vector<std::unique_ptr<SideBySidePanel>> sideBySidePanels(const std::vector<std::string>& args, const CommandLine& cl) {
-    std::vector<std::string> shared;
-    for (size_t i = 0; i < args.size(); ++i) {
-        if (args[i] == "--side-by-side" || args[i] == "--out" || args[i] == "--live") { ++i; continue; }
-        if (args[i] != "--overwrite" && args[i] != cl.scenePath) shared.push_back(args[i]);
-    }
-    std::vector<std::unique_ptr<SideBySidePanel>> panels;
-    for (const std::string& entry : cl.sideBySide) {
-        auto panel = std::make_unique<SideBySidePanel>();
-        std::vector<std::string> line = {cl.scenePath, "--method"};
-        std::stringstream words(entry);
-        for (std::string w; words >> w;) {
-            if (hasExtension(w, "scene") && line.back().rfind("--", 0) != 0) line[0] = w;  // the entry's own scene
-            else line.push_back(w);
-            panel->label += (panel->label.empty() ? "" : " ") + w;
-        }
-        if (line.size() == 2) ArgReader::fail("--side-by-side has an empty entry (two commas, or one at an end)");
-        line.insert(line.end(), shared.begin(), shared.end());
-        try {
-            panel->cl = parseCommandLine(line);
-        } catch (const InputError& e) {
-            throw InputError(std::string(e.what()) + ", in --side-by-side's entry '" + printable(entry) +
-                             "' (an option of some methods only goes in their entries)");
-        }
-        panels.push_back(std::move(panel));
-    }
-    return panels;
-}
-
-inline int runSideBySide(const std::vector<std::string>& args, CommandLine& cl, const Scene& scene, const Image& ref, std::ostream& out,
-                         std::ostream& err) {
-    std::vector<std::unique_ptr<SideBySidePanel>> panels;
-    try {
-        panels = sideBySidePanels(args, cl);
-    } catch (const InputError& e) {
-        err << e.what() << "\n";
-        return 2;
-    }
-    const int n = int(panels.size()), W = scene.camera.width, H = scene.camera.height;
-    for (auto& panel : panels) {
-        panel->scene = scene;
-        if (panel->cl.scenePath == cl.scenePath) continue;
-        try {
-            panel->scene = loadScene(panel->cl.scenePath);
-        } catch (const InputError& e) {
-            err << e.what() << ", in --side-by-side's entry '" << printable(panel->label) << "'\n";
-            return 2;
-        }
-        if (cl.width > 0) setResolution(panel->scene.camera, cl.width, cl.height);
-        if (ref.width > 0) {
-            err << "bdpt: --ref is one scene's reference: leave it out when an entry names its own scene (nothing rendered)\n";
-            return 2;
-        }
-        if (panel->scene.camera.width != W || panel->scene.camera.height != H) {
-            err << "bdpt: the scenes' images differ in size (" << cl.scenePath << " " << W << "x" << H << ", " << panel->cl.scenePath
-                << " " << panel->scene.camera.width << "x" << panel->scene.camera.height
-                << "): give them one with --res WxH (nothing rendered)\n";
-            return 2;
-        }
-    }
-    const int cores = cl.opt.threads > 0 ? cl.opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    double needed = 0;
-    for (auto& panel : panels) needed += estimatedBytes(panel->scene, panel->cl.opt, false);
-    if (needed + 200e6 > memoryLimitBytes()) {
-        err << "bdpt: these " << n << " renders need about " << std::setprecision(2) << std::fixed << needed / 1e9
-            << " GB together, more than this process may use: use a smaller --res (nothing rendered)\n";
-        return 1;
-    }
-    int widest = labelWidth("9999 spp  59.9 s", 1);
-    for (auto& panel : panels) widest = std::max(widest, labelWidth(panel->label, 1));
-    const SideBySideLayout layout(n, W, H, widest);
-    auto writeFrame = [&] { return writePNGBytes(sideBySideFrame(panels, ref, layout), layout.canvasW, layout.canvasH, cl.out); };
-    if (cl.liveSeconds > 0) writeFrame();  // at once: a viewer opens it, and never shows an older run's image
-    warnAboutScene(scene, panels[0]->cl.opt, err);
-    std::vector<std::thread> running;
-    for (auto& owned : panels) {
-        SideBySidePanel& panel = *owned;
-        panel.scene.conventions = panel.cl.conventions;
-        if (!panel.cl.exposureGiven) panel.cl.opt.exposure = panel.scene.exposure;
-        panel.cl.opt.quiet = true;
-        panel.cl.opt.threads = std::max(1, cores / n);
-        panel.sum.assign(3 * size_t(W) * H, 0.0);
-        auto start = std::chrono::steady_clock::now();
-        panel.cl.opt.onPass = [&panel, start](int p, const std::vector<Vec3>& pass, long long) {
-            std::lock_guard<std::mutex> hold(panel.lock);
-            for (size_t i = 0; i < pass.size(); ++i)
-                for (int c = 0; c < 3; ++c) panel.sum[3 * i + c] += pass[i][c];
-            panel.passes = p + 1;
-            panel.seconds = secondsSince(start);
-        };
-        running.emplace_back([&panel] {
-            try {
-                panel.result = render(panel.scene, panel.cl.opt);
-            } catch (const std::bad_alloc&) {
-                panel.outOfMemory = true;
-            }
-            std::lock_guard<std::mutex> hold(panel.lock);
-            panel.done = true;
-        });
-    }
-    auto lastFrame = std::chrono::steady_clock::now();
-    for (bool all = false; !all;) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        all = true;
-        for (auto& panel : panels) {
-            std::lock_guard<std::mutex> hold(panel->lock);
-            all = all && panel->done;
-        }
-        if (!all && cl.liveSeconds > 0 && secondsSince(lastFrame) >= cl.liveSeconds) writeFrame(), lastFrame = std::chrono::steady_clock::now();
-    }
-    for (std::thread& t : running) t.join();
-    for (auto& panel : panels)
-        if (panel->outOfMemory) throw std::bad_alloc();
-    if (!writeFrame()) {
-        err << "bdpt: cannot write " << cl.out << "\n";
-        return 1;
-    }
-    const std::string base = replaceExtension(cl.out, "");
-    for (int i = 0; i < n; ++i) {
-        const SideBySidePanel& panel = *panels[i];
-        const std::string pfm = base + "-" + std::to_string(i + 1) + "-" + methodName(panel.cl.opt.method) + ".pfm";
-        if (!writePFM(panel.result.image, pfm)) {
-            err << "bdpt: cannot write " << pfm << "\n";
-            return 1;
-        }
-        if (cl.opt.quiet) continue;
-        char text[160];
-        std::snprintf(text, sizeof text, "%d. %s: %d samples per pixel in %.2f s on %d thread%s, mean %g, ", i + 1, panel.label.c_str(),
-                      panel.result.passes, panel.result.seconds, panel.cl.opt.threads, panel.cl.opt.threads > 1 ? "s" : "",
-                      imageMean(panel.result.image));
-        out << text << raysPerSample(panel.result) << "; wrote " << pfm;
-        if (ref.width > 0) {
-            ErrorMetrics m = compareToReference(panel.result.image, ref);
-            std::snprintf(text, sizeof text, "; rmse %.4g (%.4g without the lamp's pixels), bias %+.2f%%", m.rmse, m.rmseWithoutLamp, 100 * m.bias);
-            out << text;
-        }
-        out << "\n";
-    }
-    if (!cl.opt.quiet) out << "wrote " << cl.out << " (" << layout.canvasW << "x" << layout.canvasH << ")\n";
-    if (gInterrupts.load() > 0) {
-        err << "bdpt: interrupted: wrote the completed samples per pixel of every panel\n";
-        return kExitInterrupted;
-    }
-    return 0;
-}
-
-// What a method adds to the summary line: vcm's radius and light vertices, the chains' b and
-// acceptance, what the clamp removed.
-inline void printMethodSummary(const CommandLine& cl, const Scene& scene, const RenderResult& r, std::ostream& out) {
-    char text[256];
-    if (cl.opt.method == Method::VCM) {
-        double pixelPasses = double(r.passes) * r.image.width * r.image.height;
-        std::snprintf(text, sizeof text, "vcm: radius %g in pass 1, %g in pass %d; %.1f light vertices per pixel and pass, %.1f of them "
-                      "mergeable; light subpaths and grid %.1f MB (%.0f bytes per light vertex)\n", mergeRadius(scene, cl.opt, 0),
-                      mergeRadius(scene, cl.opt, r.passes - 1), r.passes, r.lightVertices / pixelPasses, r.mergeableVertices / pixelPasses,
-                      r.lightVertexBytes / 1e6, r.lightVertexBytes * double(r.passes) / std::max(1.0, double(r.lightVertices)));
-        out << text;
-    }
-    if (isMetropolis(cl.opt.method)) {
-        std::snprintf(text, sizeof text, "%s: b = %.6g +- %.2g (bootstrap of %d samples); %d chains accepted %.1f%% of %lld mutations\n",
-                      methodName(cl.opt.method), r.mltB, r.mltBError, bootstrapSamples(cl.opt), cl.opt.chains,
-                      100.0 * double(r.mltAccepted) / double(std::max(1LL, r.mltProposed)), r.mltProposed);
-        out << text;
-    }
-    if (cl.opt.method == Method::MLT) {
-        out << "mlt: accepted";
-        const char* names[3] = {"bidirectional", "lens", "caustic"};
-        for (int m = 0; m < 3; ++m) {
-            std::snprintf(text, sizeof text, "%s %s %.1f%% of %lld", m ? "," : "", names[m],
-                          100.0 * double(r.mutationsAccepted[m]) / double(std::max(1LL, r.mutationsProposed[m])), r.mutationsProposed[m]);
-            out << text;
-        }
-        out << " (a proposal that could not be made counts as refused)\n";
-    }
-    if (cl.opt.method == Method::IR && cl.opt.clamp > 0)
-        out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved() << "% of the energy gathered from VPLs\n";
-}
-
-inline int runCommandLine(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+// The lecture's program: parse, render, write the PNG, the PFM and the strategy images, summarise.
+inline int runLecture(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     CommandLine cl;
     Scene scene;
     try {
-        cl = parseCommandLine(args);
-        if (cl.help) { out << usage(); return 0; }
-        if (!cl.failureLogs.empty()) return printFailureTable(cl.failureLogs, out, err);
-        if (!cl.pfmA.empty()) return runImageTool(cl, out, err);
+        cl = parseOptions(args, kOptions);
+        if (cl.help) { out << usage(kOptions); return 0; }
+        if (cl.scenePath.empty()) ArgReader::fail("no scene file given");
+        if (!hasExtension(cl.out, ".png")) ArgReader::fail("--out must name a .png file (the PFM goes beside it), got '" + printable(cl.out) + "'");
+        checkCombinations(cl, kOptions);
         scene = loadScene(cl.scenePath);
+        applyToScene(cl, scene);
     } catch (const InputError& e) {
         err << e.what() << "\n";
         return 2;
     }
-    if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
-    const std::string pfm = replaceExtension(cl.out, ".pfm");
-    Image ref;
-    if (int status = checkBeforeRendering(cl, scene, pfm, ref, err)) return status;
-    if (!cl.sideBySide.empty()) return runSideBySide(args, cl, scene, ref, out, err);
-    if (cl.liveSeconds > 0)  // a first frame at once: a viewer opens it, and never shows an older run's image
-        writePNG(Image(scene.camera.width, scene.camera.height), cl.out, 0);
-    warnAboutScene(scene, cl.opt, err);
-    if (!cl.exposureGiven) cl.opt.exposure = scene.exposure;
-    scene.conventions = cl.conventions;
-    PassLog passLog(cl, scene, ref);
-    if (!cl.logPath.empty() && !passLog.open()) { err << "bdpt: cannot write " << cl.logPath << " (nothing rendered)\n"; return 1; }
-    if (!cl.logPath.empty() || cl.liveSeconds > 0)
-        cl.opt.onPass = [&](int p, const std::vector<Vec3>& pass, long long nonFinite) {
-            passLog.add(p, pass, nonFinite, scene.camera.width, scene.camera.height);
-        };
-    if (cl.profile) cl.opt.threads = 1, gCostClock = CostClock(), gCostClock.on = true, gCostClock.last = CostClock::now();
-    double cpu0 = threadCpuSeconds();
     RenderResult r = render(scene, cl.opt);
-    double cpu = threadCpuSeconds() - cpu0;
-    if (cl.profile) gCostClock.switchTo(Cost::Other), gCostClock.on = false;
-    if (!cl.logPath.empty()) {
-        passLog.log.close();
-        if (!passLog.log) { err << "bdpt: cannot write " << cl.logPath << "\n"; return 1; }
-    }
-    if (!writePNG(r.image, cl.out, cl.opt.exposure) || !writePFM(r.image, pfm)) {
-        err << "bdpt: cannot write " << cl.out << " or " << pfm << "\n";
-        std::remove(cl.out.c_str());
+    const std::string pfm = replaceExtension(cl.out, ".pfm");
+    if (!writePNG(r.image, cl.out, cl.exposure) || !writePFM(r.image, pfm) ||
+        (!cl.strategiesDir.empty() && (mkdir(cl.strategiesDir.c_str(), 0777), !writeStrategyImages(r, cl.strategyLength, cl.strategiesDir, cl.exposure)))) {
+        err << "bdpt: cannot write " << cl.out << ", " << pfm << " or the strategy images\n";
         return 1;
     }
-    char seconds[32];
-    std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);  // a hundredth: the clock's noise is larger
-    if (!cl.opt.quiet)
-        out << cl.scenePath << ": " << r.passes << " samples per pixel in " << seconds << " s, mean " << imageMean(r.image) << ", "
-            << r.nonFinite << " non-finite samples dropped, " << raysPerSample(r) << "; wrote " << cl.out << " and " << pfm << "\n";
-    if (!writeStrategyImages(r, cl.opt.strategyMaxLength, cl.strategiesDir, cl.opt.exposure, out)) {
-        err << "bdpt: cannot write the strategy images into " << cl.strategiesDir << "/\n";
-        return 1;
-    }
-    if (r.interrupted) {
-        err << "bdpt: interrupted: wrote the " << r.passes << " completed samples per pixel to " << cl.out << " and " << pfm << "\n";
-        return kExitInterrupted;
-    }
-    if (!cl.opt.quiet) printMethodSummary(cl, scene, r, out);
-    if (cl.profile) printProfile(gCostClock, cpu, double(r.passes) * r.image.width * r.image.height, out);
-    if (!cl.opt.quiet && ref.width > 0) {
-        ErrorMetrics m = compareToReference(r.image, ref);
-        char text[256];
-        std::snprintf(text, sizeof text, "against %s: rmse %.4g (%.4g without the lamp's pixels), relmse %.4g, bias %+.2f%%\n",
-                      cl.refPath.c_str(), m.rmse, m.rmseWithoutLamp, m.relMse, 100 * m.bias);
-        out << text;
-    }
+    if (!cl.quiet) out << summaryLine(cl, r, pfm);
     return 0;
 }
 
 #ifndef BDPT_NO_MAIN
-int main(int argc, char** argv) {
-    std::signal(SIGINT, onInterrupt);
-    try {
-        return runCommandLine(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr);
-    } catch (const std::bad_alloc&) {  // past the estimate: a scene larger than it, or a lower limit
-        std::cerr << "bdpt: out of memory (a smaller --res, fewer --strategies, or another method); no file written\n";
-        return 4;
-    }
-}
+int main(int argc, char** argv) { return runLecture(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr); }
 #endif

@@ -20,6 +20,9 @@ namespace test_core {
 namespace test_first_hour {
 #include "test_first_hour.cpp"
 }
+namespace test_lecture {
+#include "test_lecture.cpp"
+}
 namespace test_metrics {
 #include "test_metrics.cpp"
 }

@@ -8,7 +8,7 @@
 #pragma once
 #ifndef BDPT_NO_MAIN  // helpers.h (the tests) may have included the renderer already
 #define BDPT_NO_MAIN
-#include "bdpt.cpp"
+#include "classroom/classroom.cpp"
 #endif
 
 // threadCpuSeconds(): the renderer's (--profile's clock).

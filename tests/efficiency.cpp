@@ -23,7 +23,6 @@ struct Variant {
 static RenderOptions with(Method m, void (*change)(RenderOptions&) = nullptr) {
     RenderOptions o;
     o.method = m;
-    o.quiet = true;
     o.threads = 1;
     if (change) change(o);
     return o;

@@ -1,7 +1,8 @@
-// Shared by the test files: each is its own program that includes the renderer (without its main).
+// Shared by the test files: each is its own program that includes the renderer, the lecture's
+// bdpt.cpp with the classroom's tools around it (classroom/classroom.cpp), without their mains.
 #pragma once
 #define BDPT_NO_MAIN
-#include "bdpt.cpp"
+#include "classroom/classroom.cpp"
 #ifdef BDPT_STB_HEADER  // make STB_DIR=FOLDER: the tests need stb_image.h there too
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb_image.h>
@@ -49,6 +50,13 @@ inline float standardNormal(Rng& rng) {
     return a;
 }
 
+// A render whose passes fn(rendering) sees one by one, rendering.pass holding the pass's image.
+template <class Fn>
+inline RenderResult renderEachPass(const Scene& scene, const RenderOptions& opt, const Fn& fn) {
+    bool interrupted = false;
+    return renderWatched(scene, opt, false, interrupted, fn);
+}
+
 inline Scene sceneAt(const std::string& file, int width, int height) {
     Scene s = loadScene(file);
     setResolution(s.camera, width, height);
@@ -60,7 +68,6 @@ inline RenderOptions quietOptions(Method m, int spp, uint64_t seed = 1) {
     o.method = m;
     o.spp = spp;
     o.seed = seed;
-    o.quiet = true;
     return o;
 }
 
@@ -106,7 +113,8 @@ inline RegionEstimate regionsOverSeeds(const std::vector<std::vector<double>>& p
 inline RegionEstimate renderRegions(const Scene& scene, RenderOptions opt, int grid, RenderResult* out = nullptr) {
     const int W = scene.camera.width, H = scene.camera.height, R = grid * grid + 1;
     std::vector<std::vector<double>> samples(R);
-    opt.onPass = [&](int, const std::vector<Vec3>& pass, long long) {
+    auto addPass = [&](const Rendering& rendering) {
+        const std::vector<Vec3>& pass = rendering.pass;
         std::vector<double> s(R, 0.0);
         std::vector<int> n(R, 0);
         for (int y = 0; y < H; ++y)
@@ -118,8 +126,8 @@ inline RegionEstimate renderRegions(const Scene& scene, RenderOptions opt, int g
             }
         for (int r = 0; r < R; ++r) samples[r].push_back(s[r] / n[r]);
     };
-    RenderResult result = render(scene, opt);
-    if (out) *out = result;
+    RenderResult result = renderEachPass(scene, opt, addPass);
+    if (out) *out = std::move(result);
     return regionsOverSeeds(samples);
 }
 

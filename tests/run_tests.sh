@@ -36,6 +36,7 @@ test_bdpt bdpt: MIS weights, specular chains, strategy images
 test_bvh the BVH against the brute-force loop
 test_core hits, BSDFs, the furnace, options, bad input
 test_first_hour a first hour's mistakes, each with its message
+test_lecture bdpt.cpp alone as ./bdpt; fixed-seed images bit for bit
 test_metrics error metrics, --ratio, the failure table
 test_mlt Metropolis: the sampler, steps, regions over seeds
 test_veach Veach's mutations: acceptance against T from scratch

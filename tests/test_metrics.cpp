@@ -198,7 +198,9 @@ static std::vector<ErrorMetrics> errorsAt(const Scene& scene, RenderOptions o, c
     std::vector<ErrorMetrics> out;
     std::vector<double> sum(3 * ref.pixels.size(), 0.0);
     o.spp = passes.back();
-    o.onPass = [&](int p, const std::vector<Vec3>& pass, long long) {
+    renderEachPass(scene, o, [&](const Rendering& r) {
+        const std::vector<Vec3>& pass = r.pass;
+        const int p = r.result.passes - 1;
         for (size_t i = 0; i < pass.size(); ++i)
             for (int c = 0; c < 3; ++c) sum[3 * i + c] += pass[i][c];
         if (std::find(passes.begin(), passes.end(), p + 1) == passes.end()) return;
@@ -206,8 +208,7 @@ static std::vector<ErrorMetrics> errorsAt(const Scene& scene, RenderOptions o, c
         for (size_t i = 0; i < mean.pixels.size(); ++i)
             for (int c = 0; c < 3; ++c) mean.pixels[i][c] = float(sum[3 * i + c] / (p + 1));
         out.push_back(compareToReference(mean, ref));
-    };
-    render(scene, o);
+    });
     return out;
 }
 

@@ -30,9 +30,9 @@ TargetRun runOnTarget(float largeStep, float sigma, float (*accept)(float, float
     RenderOptions opt;
     opt.largeStep = largeStep;
     opt.sigma = sigma;
-    MltChain chain;
+    PrimarySampleChain chain;
     chain.rng = makeRng(seed, 0, 0);
-    auto evaluate = [&](MltState& u) {
+    auto evaluate = [&](PrimarySampleState& u) {
         Rng numbers;
         numbers.replay = &u.camera;
         u.camera.used = 0;
@@ -43,7 +43,7 @@ TargetRun runOnTarget(float largeStep, float sigma, float (*accept)(float, float
     };
     evaluate(chain.current);
     std::vector<double> visited(kBins * kBins, 0), splatted(kBins * kBins, 0);
-    auto splat = [&](const MltState& u, double weight) { splatted[u.contributions[0].pixel] += weight * u.f; };
+    auto splat = [&](const PrimarySampleState& u, double weight) { splatted[u.contributions[0].pixel] += weight * u.f; };
     for (int i = 0; i < kSteps; ++i) {
         metropolisStep(opt, chain, evaluate, splat, accept);
         if (i % kThin == 0) visited[chain.current.contributions[0].pixel] += 1;
@@ -69,7 +69,7 @@ float acceptSquared(float fCurrent, float fProposal) { return std::min(1.0f, sqr
 
 TEST_CASE("the Metropolis sampler alone fits a known target; acceptance rules that break detailed balance do not") {
     for (float largeStep : {0.3f, 0.0f}) {  // 0: small steps alone, so their wrapping must be symmetric
-        TargetRun good = runOnTarget(largeStep, 0.1f, mltAcceptance, 7);
+        TargetRun good = runOnTarget(largeStep, 0.1f, symmetricAcceptance, 7);
         MESSAGE("large steps " << largeStep << ": chi-square " << good.visitedChiSquare << " (visited), " << good.splattedChiSquare
                                << " (splatted), acceptance " << good.acceptance);
         CHECK(good.visitedChiSquare < 120);
@@ -110,13 +110,12 @@ TEST_CASE("replaying a state gives its contribution bit for bit; a rejected prop
         RenderOptions opt = quietOptions(method, 1);
         opt.bootstrap = 2000;
         opt.chains = 4;
-        MltPass mp;
-        RayCount rays;
-        startChains(scene, opt, 1, mp, rays);
+        MetropolisPass mp;
+        startPrimarySampleChains(scene, opt, 1, mp);
         REQUIRE(mp.b > 0);
-        for (MltChain& chain : mp.chains) {
+        for (PrimarySampleChain& chain : mp.chains) {
             REQUIRE(chain.current.f > 0);
-            MltState copy = chain.current;
+            PrimarySampleState copy = chain.current;
             evaluateState(scene, chainOptions(opt), chain.current, chain.rng, chain.rng, chain.rng);
             CHECK(chain.current.f == copy.f);
             REQUIRE(chain.current.contributions.size() == copy.contributions.size());
@@ -126,10 +125,10 @@ TEST_CASE("replaying a state gives its contribution bit for bit; a rejected prop
             }
             CHECK(chain.current.camera.values == copy.camera.values);  // no number drawn anew
             CHECK(chain.current.light.values == copy.light.values);
-            auto evaluate = [&](MltState& u) { evaluateState(scene, chainOptions(opt), u, chain.rng, chain.rng, chain.rng); };
+            auto evaluate = [&](PrimarySampleState& u) { evaluateState(scene, chainOptions(opt), u, chain.rng, chain.rng, chain.rng); };
             int moved = 0;
             for (int step = 0; step < 20; ++step) {
-                metropolisStep(opt, chain, evaluate, [](const MltState&, double) {}, [](float, float) { return 0.0f; });
+                metropolisStep(opt, chain, evaluate, [](const PrimarySampleState&, double) {}, [](float, float) { return 0.0f; });
                 moved += chain.proposal.camera.values != copy.camera.values;
                 CHECK(chain.current.f == copy.f);
                 CHECK(chain.current.camera.values == copy.camera.values);
@@ -179,17 +178,17 @@ TEST_CASE("the bootstrap's b is the image's luminance mean; starting every chain
     opt.bootstrap = 20000;
     opt.chainShortPaths = true;  // b is then the whole image's
     RenderResult r = render(scene, opt);
-    MESSAGE("b = " << r.mltB << " +- " << r.mltBError << ", reference " << refLuminance);
-    CHECK(std::fabs(r.mltB - refLuminance) < 4 * r.mltBError);
-    CHECK(r.mltBError < 0.1 * r.mltB);
+    MESSAGE("b = " << r.method.metropolis.b << " +- " << r.method.metropolis.bStandardError << ", reference " << refLuminance);
+    CHECK(std::fabs(r.method.metropolis.b - refLuminance) < 4 * r.method.metropolis.bStandardError);
+    CHECK(r.method.metropolis.bStandardError < 0.1 * r.method.metropolis.b);
     // Every pass's large steps join b: 32 passes of 4,096 mutations add about 39,000 samples of
     // f to the bootstrap's 20,000, so its standard error falls, by about sqrt(20/59) = 0.58 (by
     // the bootstrap alone it stays).
     opt.spp = 32;
     RenderResult longer = render(scene, opt);
-    MESSAGE("after 32 passes b = " << longer.mltB << " +- " << longer.mltBError);
-    CHECK(longer.mltBError < 0.8 * r.mltBError);
-    CHECK(std::fabs(longer.mltB - refLuminance) < 4 * longer.mltBError);
+    MESSAGE("after 32 passes b = " << longer.method.metropolis.b << " +- " << longer.method.metropolis.bStandardError);
+    CHECK(longer.method.metropolis.bStandardError < 0.8 * r.method.metropolis.bStandardError);
+    CHECK(std::fabs(longer.method.metropolis.b - refLuminance) < 4 * longer.method.metropolis.bStandardError);
     opt.spp = 1;
     // At one mutation per pixel (16 per chain) chains have not left their start: from the
     // bootstrap they are spread as f is, from one state they are all in one place.
@@ -249,6 +248,9 @@ TEST_CASE("a pass makes exactly W H mutations whatever the number of chains") {
             opt.chains = chains;
             RenderResult r = render(scene, opt);
             CAPTURE(chains);
-            CHECK(r.mltProposed == 3LL * 48 * 32);
+            long long proposed = 0;
+            for (const PrimarySampleChain& c : r.method.metropolis.chains) proposed += c.proposed;
+            for (const PathChain& c : r.method.metropolis.paths) proposed += c.proposed;
+            CHECK(proposed == 3LL * 48 * 32);
         }
 }

@@ -53,8 +53,13 @@ static std::vector<std::string> notePages() {
     return pages;
 }
 
-TEST_CASE("the notes cite only functions that bdpt.cpp defines") {
-    std::string source = slurp("bdpt.cpp");
+// The renderer's source: the lecture's file and the classroom's, which the notes cite too.
+static std::string rendererSource() {
+    return slurp("bdpt.cpp") + slurp("classroom/classroom.cpp") + slurp("classroom/figures.h") + slurp("classroom/checks.h");
+}
+
+TEST_CASE("the notes cite only functions that bdpt.cpp or classroom/ defines") {
+    std::string source = rendererSource();
     std::vector<std::string> pages = notePages();
     CHECK(pages.size() >= 16);  // 15 pages and the index
     int cited = 0;
@@ -126,7 +131,7 @@ TEST_CASE("the code the notes show is bdpt.cpp's, line for line") {
     // moved to another function, with a call missing an argument). Every line of a ```cpp block
     // but "..." must be a line of bdpt.cpp, indentation aside.
     std::set<std::string> code;
-    std::istringstream source(slurp("bdpt.cpp"));
+    std::istringstream source(rendererSource());
     auto trim = [](const std::string& line) {
         size_t first = line.find_first_not_of(' '), last = line.find_last_not_of(' ');
         return first == std::string::npos ? std::string() : line.substr(first, last - first + 1);

@@ -39,13 +39,13 @@ static RenderOptions methodOptions(Method m, int spp, uint64_t seed, bool mis = 
 static std::vector<std::vector<double>> passRegionMeans(const Scene& scene, RenderOptions opt, int grid) {
     const int W = scene.camera.width, H = scene.camera.height;
     std::vector<std::vector<double>> means(grid * grid);
-    opt.onPass = [&](int, const std::vector<Vec3>& pass, long long) {
+    renderEachPass(scene, opt, [&](const Rendering& r) {
+        const std::vector<Vec3>& pass = r.pass;
         std::vector<double> s(grid * grid, 0.0);
         for (int y = 0; y < H; ++y)
             for (int x = 0; x < W; ++x) s[(y * grid / H) * grid + x * grid / W] += average(pass[size_t(y) * W + x]);
-        for (int r = 0; r < grid * grid; ++r) means[r].push_back(s[r] * grid * grid / (W * H));
-    };
-    render(scene, opt);
+        for (int k = 0; k < grid * grid; ++k) means[k].push_back(s[k] * grid * grid / (W * H));
+    });
     return means;
 }
 

@@ -4,13 +4,13 @@
 
 // Paths drawn as the chains' starts are: a bootstrap sample's strategies, one in proportion to
 // its MIS-weighted luminance.
-std::vector<ChainPath> startPaths(const Scene& scene, const RenderOptions& opt, int count) {
-    std::vector<ChainPath> paths;
+std::vector<MutatedPath> startPaths(const Scene& scene, const RenderOptions& opt, int count) {
+    std::vector<MutatedPath> paths;
     Rng rng = makeRng(77, 0, 0);
     for (int i = 0; int(paths.size()) < count && i < 100 * count; ++i) {
         double sum = pathBootstrapSample(scene, opt, i, 0, nullptr);
         if (!(sum > 0)) continue;
-        ChainPath x;
+        MutatedPath x;
         pathBootstrapSample(scene, opt, i, rng.uniform() * sum, &x);
         if (x.f > 0) paths.push_back(x);
     }
@@ -25,10 +25,10 @@ TEST_CASE("a path's f and densities are the same from every strategy that can ma
         Scene scene = sceneAt("scenes/" + name + ".scene", 32, 32);
         RenderOptions opt = quietOptions(Method::MLT, 1);
         opt.chainShortPaths = true;
-        std::vector<ChainPath> starts = startPaths(scene, opt, 300);
+        std::vector<MutatedPath> starts = startPaths(scene, opt, 300);
         std::vector<PathVertex> light, camera;
         int compared = 0, agree = 0, specular = 0;
-        for (const ChainPath& x : starts) {
+        for (const MutatedPath& x : starts) {
             bool hasSpecular = false;
             for (const PathVertex& v : x.x) hasSpecular |= !connectable(scene, v);
             for (int s = 0; s <= x.k(); ++s) {
@@ -37,7 +37,7 @@ TEST_CASE("a path's f and densities are the same from every strategy that can ma
                 if (s == 0 && x.x[0].deltaPosition) continue;
                 subpathThrough(scene, x.x, s, Transport::Importance, light);
                 subpathThrough(scene, x.x, t, Transport::Radiance, camera);
-                ChainPath y;
+                MutatedPath y;
                 if (!joinPath(scene, light, s, camera, t, y)) continue;  // a cosine of 0 at a connection
                 bool same = std::fabs(y.f / x.f - 1) < 1e-3;
                 for (int i = 0; i <= x.k(); ++i)
@@ -112,14 +112,14 @@ struct FromScratch {
         return 1.0 / (scene.lights.size() * length(cross(s.u, s.v)));
     }
     // Light-side density of x_i, from x_{i-1}; camera-side density of x_i, from x_{i+1}.
-    double fromLight(const ChainPath& p, int i) const {
+    double fromLight(const MutatedPath& p, int i) const {
         const auto& x = p.x;
         if (i == 0) return lightPoint(x[0]);
         Vec3 n = x[i].sp.ng;
         if (i == 1) return lightStep(x[0], x[1].sp.p, n);
         return diffuseStep(x[i - 2].sp.p, x[i - 1].sp.p, x[i - 1].sp.ng, x[i].sp.p, n);
     }
-    double fromCamera(const ChainPath& p, int i) const {
+    double fromCamera(const MutatedPath& p, int i) const {
         const auto& x = p.x;
         int k = p.k();
         if (i == 0 && x[0].deltaPosition) return 0;
@@ -127,10 +127,10 @@ struct FromScratch {
         return diffuseStep(x[i + 2].sp.p, x[i + 1].sp.p, x[i + 1].sp.ng, x[i].sp.p, x[i].sp.ng);
     }
     // A point light is one point: y with x_0 kept is also y with x_0 deleted and drawn again.
-    double transition(const ChainPath& x, const ChainPath& y, int a, int kd, int ka) const {
+    double transition(const MutatedPath& x, const MutatedPath& y, int a, int kd, int ka) const {
         return oneWay(x, y, a, kd, ka) + (a == 1 && x.x[0].deltaPosition ? oneWay(x, y, 0, kd + 1, ka + 1) : 0);
     }
-    double oneWay(const ChainPath& x, const ChainPath& y, int a, int kd, int ka) const {
+    double oneWay(const MutatedPath& x, const MutatedPath& y, int a, int kd, int ka) const {
         if (!lengthOk(x.k(), kd, ka) || places(x.k(), kd, ka) == 0) return 0;
         double sum = 0;
         for (int s = oneSplit ? ka - 1 : 0; s < ka; ++s) {
@@ -143,7 +143,7 @@ struct FromScratch {
 };
 
 // The replaced range of x: the first a vertices and the last vertices from x_b on are y's too.
-bool replacedRange(const ChainPath& x, const ChainPath& y, int& a, int& kd, int& ka) {
+bool replacedRange(const MutatedPath& x, const MutatedPath& y, int& a, int& kd, int& ka) {
     auto same = [](const PathVertex& p, const PathVertex& q) { return p.sp.p.x == q.sp.p.x && p.sp.p.y == q.sp.p.y && p.sp.p.z == q.sp.p.z; };
     int prefix = 0, suffix = 0;
     while (prefix < std::min(x.k(), y.k()) && same(x.x[prefix], y.x[prefix])) ++prefix;
@@ -161,17 +161,17 @@ TEST_CASE("the bidirectional mutation's acceptance is f(y) T(x|y) / (f(x) T(y|x)
         RenderOptions opt = quietOptions(Method::MLT, 1);
         opt.chainShortPaths = true;
         opt.maxDepth = 5;  // lengths reach the clamp of the length distribution
-        const RenderOptions walk = chainOptions(opt);
+        const SampleOptions walk = chainOptions(opt);
         const LengthRange range{1, opt.maxDepth + 1};
         FromScratch T{scene, opt.maxDepth + 1, 1};
-        std::vector<ChainPath> starts = startPaths(scene, opt, 300);
+        std::vector<MutatedPath> starts = startPaths(scene, opt, 300);
         REQUIRE(starts.size() == 300);
         Rng rng = makeRng(5, 0, 0);
         int compared = 0, agree = 0, oneSplitOff = 0, lengthsUnclampedOff = 0;
         double worst = 0;
-        for (const ChainPath& x : starts)
+        for (const MutatedPath& x : starts)
             for (int m = 0; m < 10; ++m) {
-                ChainPath y;
+                MutatedPath y;
                 double ratio = bidirectionalMutation(scene, walk, range, x, rng, y);
                 if (!(ratio > 0)) continue;
                 int a, kd, ka;
@@ -247,19 +247,19 @@ TEST_CASE("the lens and caustic perturbations' acceptance is that of their moves
     const Camera& cam = scene.camera;
     RenderOptions opt = quietOptions(Method::MLT, 1);
     opt.chainShortPaths = true;
-    std::vector<ChainPath> starts = startPaths(scene, opt, 400);
+    std::vector<MutatedPath> starts = startPaths(scene, opt, 400);
     REQUIRE(starts.size() == 400);
     Rng rng = makeRng(9, 0, 0);
     auto filmRay = [&](double u, double v, Vec3& from, Vec3& dir) {
         Ray r = cameraRay(cam, float(u), float(v));
         from = r.o, dir = r.d;
     };
-    auto filmArea = [&](const ChainPath& p) {
+    auto filmArea = [&](const MutatedPath& p) {
         float fx = 0, fy = 0;
         if (!projectToFilm(cam, p.x[p.k() - 1].sp.p, fx, fy)) return 0.0;
         return sweptArea(scene, fx, fy, 0.02, filmRay);
     };
-    auto directionArea = [&](const ChainPath& p, int l) {  // per steradian, about the direction to x_{l+1}
+    auto directionArea = [&](const MutatedPath& p, int l) {  // per steradian, about the direction to x_{l+1}
         Vec3 w = normalize(p.x[l + 1].sp.p - p.x[l].sp.p);
         Frame frame(w);
         auto turnedRay = [&](double a, double b, Vec3& from, Vec3& dir) {
@@ -268,7 +268,7 @@ TEST_CASE("the lens and caustic perturbations' acceptance is that of their moves
         };
         return sweptArea(scene, 0, 0, 2e-4, turnedRay);
     };
-    auto thetaDensity = [&](const ChainPath& p, int l, double theta) {
+    auto thetaDensity = [&](const MutatedPath& p, int l, double theta) {
         double chain = 0;
         for (int i = l; i < p.k() - 1; ++i) chain += length(p.x[i + 1].sp.p - p.x[i].sp.p);
         double radiansPerPixel = cam.fovDegrees * kPi / 180 / cam.height;  // the field of view spans the height
@@ -277,9 +277,9 @@ TEST_CASE("the lens and caustic perturbations' acceptance is that of their moves
         return theta >= t1 && theta <= t2 ? 1 / (2 * kPi * std::log(t2 / t1) * theta * std::sin(theta)) : 0;
     };
     int lensCompared = 0, lensAgree = 0, lensFOnlyOff = 0, causticCompared = 0, causticAgree = 0, causticFOnlyOff = 0;
-    for (const ChainPath& x : starts)
+    for (const MutatedPath& x : starts)
         for (int m = 0; m < 4; ++m) {
-            ChainPath y;
+            MutatedPath y;
             double ratio = lensPerturbation(scene, x, rng, y);
             if (ratio > 0 && filmArea(x) > 0 && filmArea(y) > 0) {
                 double expected = y.f * filmArea(y) / (x.f * filmArea(x));
@@ -317,15 +317,14 @@ RegionEstimate chainRegions(const Scene& scene, RenderOptions opt, int grid, int
     std::vector<std::vector<double>> perSeed(R);
     for (int seed = 0; seed < seeds; ++seed) {
         opt.seed = 2000 + seed;
-        MltPass mp;
-        RayCount rays;
-        startPathChains(scene, opt, 1, mp, rays);
-        const RenderOptions walk = chainOptions(opt);
+        MetropolisPass mp;
+        startPathChains(scene, opt, 1, mp);
+        const SampleOptions walk = chainOptions(opt);
         const LengthRange lengths{shortestChainPath(opt), opt.maxDepth + 1};
         const long long steps = N * opt.spp / (long long)mp.paths.size();
         std::vector<double> sum(R, 0);
         for (PathChain& chain : mp.paths) {
-            auto splat = [&](const ChainPath& x, double weight) {
+            auto splat = [&](const MutatedPath& x, double weight) {
                 sum[(x.pixel / W * grid / H) * grid + (x.pixel % W) * grid / W] += average(x.colour) * x.f * weight;
             };
             for (long long i = 0; i < steps; ++i) splatAndAccept(chain, mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal), splat);

@@ -41,8 +41,7 @@ int main(int argc, char** argv) {
         for (size_t m = 0; m < methods.size(); ++m) {
             RenderOptions o;
             o.method = methods[m];
-            o.quiet = true;
-            o.threads = 1;
+                    o.threads = 1;
             o.seconds = seconds;
             o.seed = uint64_t(seed);
             if (o.method != Method::PSSMLT) o.bootstrap = 100000;  // mlt's and mmlt's default, 1,000,000, would take most of a 2 s run

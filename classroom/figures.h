@@ -1,0 +1,331 @@
+// classroom/figures.h: what the classroom's figures are made of: labels in a real typeface, the
+// error of an image against a reference, the false-colour ratio of two images, and bdpt's
+// per-strategy images laid out as the slides' pyramid. Part of classroom/classroom.cpp.
+#ifdef BDPT_STB_HEADER
+#define STB_TRUETYPE_IMPLEMENTATION
+#include <stb_truetype.h>
+#else
+#include <stb/stb_truetype.h>  // libstb-dev: the header here, its code in -lstb
+#endif
+
+// Labels burned into figures (the pyramid, --side-by-side, --ratio) are set in DejaVu Sans, Debian's
+// fonts-dejavu-core and gnuplot's default sans: the charts and the figures share one typeface.
+// A label of `scale` takes a line of 7 scale pixels (the font's ascent to its descent), white,
+// its coverage blended over the image's sRGB bytes (blending in linear light makes text thin).
+constexpr const char* kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+struct LabelFont {
+    std::vector<unsigned char> data;
+    stbtt_fontinfo info{};
+    bool ok = false;
+};
+inline const LabelFont& labelFont() {
+    static const LabelFont font = [] {
+        LabelFont f;
+        std::ifstream in(kFontFile, std::ios::binary);
+        f.data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        f.ok = !f.data.empty() && stbtt_InitFont(&f.info, f.data.data(), stbtt_GetFontOffsetForIndex(f.data.data(), 0)) != 0;
+        return f;
+    }();
+    return font;
+}
+// Why labels cannot be drawn ("" if they can): checked before a render whose figure needs them.
+inline std::string fontProblem() {
+    return labelFont().ok ? "" : std::string("the figures' labels need the font ") + kFontFile + " (apt-get install fonts-dejavu-core)";
+}
+
+// Calls glyph(codepoint, x) for each character of text at `scale`, x its pen position; returns
+// the text's advance in pixels.
+template <class Glyph>
+inline float layOutLabel(const std::string& text, int scale, const Glyph& glyph) {
+    const LabelFont& font = labelFont();
+    if (!font.ok) return 0;
+    const float px = stbtt_ScaleForPixelHeight(&font.info, 7.0f * scale);
+    float x = 0;
+    for (size_t i = 0; i < text.size(); ++i) {
+        int c = (unsigned char)text[i];
+        glyph(c, x, px);
+        int advance, bearing;
+        stbtt_GetCodepointHMetrics(&font.info, c, &advance, &bearing);
+        x += advance * px;
+        if (i + 1 < text.size()) x += px * stbtt_GetCodepointKernAdvance(&font.info, c, (unsigned char)text[i + 1]);
+    }
+    return x;
+}
+inline int labelWidth(const std::string& text, int scale) { return int(std::ceil(layOutLabel(text, scale, [](int, float, float) {}))); }
+
+inline void drawLabel(std::vector<unsigned char>& rgb, int width, int height, int x0, int y0, const std::string& text, int scale) {
+    const LabelFont& font = labelFont();
+    if (!font.ok) return;
+    int ascent, descent, gap;
+    stbtt_GetFontVMetrics(&font.info, &ascent, &descent, &gap);
+    const int baseline = y0 + int(std::lround(ascent * stbtt_ScaleForPixelHeight(&font.info, 7.0f * scale)));
+    std::vector<unsigned char> coverage;
+    layOutLabel(text, scale, [&](int c, float x, float px) {
+        int gx0, gy0, gx1, gy1;
+        float shift = x - std::floor(x);
+        stbtt_GetCodepointBitmapBoxSubpixel(&font.info, c, px, px, shift, 0, &gx0, &gy0, &gx1, &gy1);
+        const int w = gx1 - gx0, h = gy1 - gy0;
+        if (w <= 0 || h <= 0) return;
+        coverage.assign(size_t(w) * h, 0);
+        stbtt_MakeCodepointBitmapSubpixel(&font.info, coverage.data(), w, h, w, px, px, shift, 0, c);
+        for (int y = 0; y < h; ++y)
+            for (int xx = 0; xx < w; ++xx) {
+                int X = x0 + int(std::floor(x)) + gx0 + xx, Y = baseline + gy0 + y, a = coverage[size_t(y) * w + xx];
+                if (a == 0 || X < 0 || Y < 0 || X >= width || Y >= height) continue;
+                for (int ch = 0; ch < 3; ++ch) {
+                    unsigned char& v = rgb[3 * (size_t(Y) * width + X) + ch];
+                    v = (unsigned char)(v + ((255 - v) * a + 127) / 255);
+                }
+            }
+    });
+}
+// The labels' scale over an image `width` pixels wide: about 24 characters across, smaller if the
+// widest line (its drawLabel width at scale 1) would not fit.
+inline int labelScale(int width, int widest) { return std::max(1, std::min(std::max(2, width / 100), (width - 4) / std::max(1, widest))); }
+
+// An image of w x h sRGB bytes copied into a canvas canvasW wide at (x0, y0), each pixel `zoom`
+// times larger.
+inline void blitZoomed(std::vector<unsigned char>& canvas, int canvasW, const std::vector<unsigned char>& rgb, int w, int h, int zoom,
+                       int x0, int y0) {
+    for (int y = 0; y < h * zoom; ++y)
+        for (int x = 0; x < w * zoom; ++x)
+            std::copy_n(&rgb[3 * (size_t(y / zoom) * w + x / zoom)], 3, &canvas[3 * (size_t(y0 + y) * canvasW + x0 + x)]);
+}
+
+inline bool readPFM(const std::string& path, Image& img) {
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return false;
+    char magic[3] = {0};
+    int w = 0, h = 0;
+    float scale = 0;
+    bool ok = std::fscanf(f, "%2s %d %d %f", magic, &w, &h, &scale) == 4 && std::string(magic) == "PF" && w > 0 &&
+              h > 0 && w <= 16384 && h <= 16384 && scale < 0 && std::fgetc(f) != EOF;
+    if (ok) {
+        img = Image(w, h);
+        for (int y = h - 1; y >= 0 && ok; --y) ok = std::fread(&img.at(0, y), sizeof(Vec3), w, f) == size_t(w);
+    }
+    std::fclose(f);
+    return ok;
+}
+
+// Error against a reference image (speed against accuracy). RMSE over pixels and channels;
+// relMSE = mean (x - ref)^2 / (ref^2 + 0.01), as rendering papers report it; the relative bias of
+// the image mean; and a firefly measure: the 99.9th percentile of the per-pixel absolute error
+// over its median (large where a few pixels carry huge errors).
+struct ErrorMetrics {
+    double rmse = 0, relMse = 0, mean = 0, bias = 0, firefly = 0;
+    double rmseWithoutLamp = 0;  // rmse over the pixels that are not nearLamp
+};
+
+// A lamp seen directly: a pixel within one pixel of a reference value above 5. Its edge pixels
+// are part lamp (Le = 17 in the Cornell boxes) and part ceiling, and a camera sample's jitter lands
+// on one or the other: that noise is the pixel filter's, the same for every camera-path method,
+// and on the Cornell boxes it is most of their MSE, hiding the transport's error (light tracing
+// splats many lamp points into each such pixel per pass and does not show it). make efficiency
+// and the charts' curves leave these pixels out.
+inline bool nearLamp(const Image& ref, int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            int u = x + dx, v = y + dy;
+            if (u >= 0 && v >= 0 && u < ref.width && v < ref.height && maxComponent(ref.at(u, v)) > 5) return true;
+        }
+    return false;
+}
+
+inline ErrorMetrics compareToReference(const Image& img, const Image& ref) {
+    ErrorMetrics m;
+    std::vector<double> pixelError(img.pixels.size());
+    double refSum = 0, sum = 0, lampless = 0;
+    long lamplessValues = 0;
+    for (size_t i = 0; i < img.pixels.size(); ++i) {
+        bool lamp = ref.width > 0 && nearLamp(ref, int(i % ref.width), int(i / ref.width));
+        for (int c = 0; c < 3; ++c) {
+            double x = img.pixels[i][c], r = ref.pixels[i][c], e = x - r;
+            m.rmse += e * e;
+            if (!lamp) lampless += e * e, ++lamplessValues;
+            m.relMse += e * e / (r * r + 0.01);
+            sum += x;
+            refSum += r;
+        }
+        pixelError[i] = std::fabs(double(average(img.pixels[i])) - average(ref.pixels[i]));
+    }
+    double n = 3.0 * img.pixels.size();
+    m.rmse = std::sqrt(m.rmse / n);
+    m.rmseWithoutLamp = std::sqrt(lampless / std::max(1L, lamplessValues));
+    m.relMse /= n;
+    m.mean = sum / n;
+    m.bias = refSum > 0 ? (sum - refSum) / refSum : 0;
+    auto quantile = [&](double q) {
+        size_t k = std::min(pixelError.size() - 1, size_t(q * (pixelError.size() - 1) + 0.5));
+        std::nth_element(pixelError.begin(), pixelError.begin() + k, pixelError.end());
+        return pixelError[k];
+    };
+    double median = quantile(0.5), p999 = quantile(0.999);
+    m.firefly = p999 / std::max(median, 1e-12);
+    return m;
+}
+
+
+// Where two methods differ: the ratio A/B of the two images' means over blocks of block x block
+// pixels (the blocks average the noise away), as a false-colour image that is white where A = B,
+// redder where A is brighter and bluer where darker, saturating at one stop; dark grey where
+// both are black. Each block's pixels hold its ratio (the PFM).
+inline Image blockRatio(const Image& a, const Image& b, int block) {
+    Image r(a.width, a.height);
+    for (int by = 0; by < a.height; by += block)
+        for (int bx = 0; bx < a.width; bx += block) {
+            double sa = 0, sb = 0;
+            for (int y = by; y < std::min(a.height, by + block); ++y)
+                for (int x = bx; x < std::min(a.width, bx + block); ++x) {
+                    sa += double(a.at(x, y).x) + a.at(x, y).y + a.at(x, y).z;
+                    sb += double(b.at(x, y).x) + b.at(x, y).y + b.at(x, y).z;
+                }
+            float ratio = sb > 0 ? float(sa / sb) : sa > 0 ? kInf : std::numeric_limits<float>::quiet_NaN();
+            for (int y = by; y < std::min(a.height, by + block); ++y)
+                for (int x = bx; x < std::min(a.width, bx + block); ++x) r.at(x, y) = Vec3(ratio);
+        }
+    return r;
+}
+
+inline Image ratioColours(const Image& ratio) {
+    Image c(ratio.width, ratio.height);
+    for (size_t i = 0; i < ratio.pixels.size(); ++i) {
+        float q = ratio.pixels[i].x;
+        if (std::isnan(q)) { c.pixels[i] = Vec3(0.03f); continue; }
+        float t = std::max(-1.0f, std::min(1.0f, q > 0 ? std::log2(q) : -1.0f));
+        c.pixels[i] = t >= 0 ? Vec3(1, 1 - t, 1 - t) : Vec3(1 + t, 1 + t, 1);
+    }
+    return c;
+}
+
+
+// --ratio's PNG: the false-colour ratio enlarged to at least 560 pixels across (two side by side
+// fill a slide), under a strip that names the division, gives the ratio of the means and draws the
+// colour key from 1/2 (blue) through 1 (white) to 2 (red).
+inline std::vector<unsigned char> ratioFigure(const Image& ratio, const std::string& title, const std::string& means, int& figureW, int& figureH) {
+    const int zoom = std::max(1, (560 + ratio.width - 1) / ratio.width), W = ratio.width * zoom;
+    const int scale = labelScale(W, std::max(labelWidth(title, 1), labelWidth(means, 1)));
+    const int gap = 2 * scale, line = 7 * scale, barH = 3 * scale, strip = 2 * line + barH + line + gap;
+    figureW = W + 2 * gap, figureH = strip + ratio.height * zoom + 2 * gap;
+    std::vector<unsigned char> canvas(size_t(figureW) * figureH * 3, 24);
+    blitZoomed(canvas, figureW, toSRGBBytes(ratioColours(ratio), 0), ratio.width, ratio.height, zoom, gap, gap + strip);
+    Image key(W, 1);
+    for (int x = 0; x < W; ++x) key.pixels[x] = Vec3(std::exp2(2.0f * (x + 0.5f) / W - 1));  // log2 from -1 to 1
+    std::vector<unsigned char> keyRGB = toSRGBBytes(ratioColours(key), 0);
+    for (int y = 0; y < barH; ++y) blitZoomed(canvas, figureW, keyRGB, W, 1, 1, gap, gap + 2 * line + y);
+    drawLabel(canvas, figureW, figureH, gap, gap, title, scale);
+    drawLabel(canvas, figureW, figureH, gap, gap + line, means, scale);
+    const int keyY = gap + 2 * line + barH + scale;
+    drawLabel(canvas, figureW, figureH, gap, keyY, "1/2", scale);
+    drawLabel(canvas, figureW, figureH, gap + W / 2 - labelWidth("1", scale) / 2, keyY, "1", scale);
+    drawLabel(canvas, figureW, figureH, gap + W - labelWidth("2", scale), keyY, "2", scale);
+    return canvas;
+}
+
+inline std::string fileStem(const std::string& path) {  // "build/notes/pool-lt.pfm" -> "pool-lt"
+    std::string name = replaceExtension(path, "");
+    size_t slash = name.find_last_of('/');
+    return slash == std::string::npos ? name : name.substr(slash + 1);
+}
+
+// --ratio: A/B over 4x4 blocks as a labelled false-colour PNG and a PFM of the ratios (0 where
+// undefined), and its percentiles on out. Returns the exit status.
+inline int writeRatio(const Image& a, const Image& b, const std::string& nameA, const std::string& nameB, const std::string& png,
+                      std::ostream& out, std::ostream& err) {
+    Image r = blockRatio(a, b, 4);
+    std::vector<float> q;
+    for (const Vec3& p : r.pixels)
+        if (std::isfinite(p.x)) q.push_back(p.x);
+    if (q.empty()) {
+        err << "bdpt: cannot divide: B is black in every 4x4 block, so A/B is nowhere defined\n";
+        return 2;
+    }
+    std::sort(q.begin(), q.end());
+    auto pct = [&](double f) { return q[size_t(f * (q.size() - 1))]; };
+    size_t off = size_t(std::count_if(q.begin(), q.end(), [](float v) { return std::fabs(std::log2(v)) > 0.5f; }));
+    out << "ratio of means " << imageMean(a) / imageMean(b) << "; A/B over 4x4 blocks: 5% " << pct(0.05) << ", median "
+        << pct(0.5) << ", 95% " << pct(0.95) << "; " << 100.0 * off / std::max<size_t>(1, q.size())
+        << "% of the blocks more than half a stop apart\n";
+    std::string pfm = replaceExtension(png, ".pfm");
+    char means[64];
+    std::snprintf(means, sizeof means, "ratio of means %.3f", imageMean(a) / imageMean(b));
+    int figureW, figureH;
+    std::vector<unsigned char> figure = ratioFigure(r, fileStem(nameA) + " / " + fileStem(nameB), means, figureW, figureH);
+    for (Vec3& p : r.pixels) p = std::isfinite(p.x) ? p : Vec3(0);
+    if (writePNGBytes(figure, figureW, figureH, png) && writePFM(r, pfm)) {
+        out << "wrote " << png << " and " << pfm << "\n";
+        return 0;
+    }
+    err << "bdpt: cannot write " << png << " or " << pfm << "\n";
+    return 1;
+}
+
+
+// The pyramid's rows differ by orders of magnitude (each bounce keeps about the albedo), so each
+// row k is brightened by whole stops until its light, the sum of its weighted tiles, comes within
+// half a stop of the brightest row's; the tile's label prints them ("s1 t3 +2").
+inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
+    const bool merges = hasMergeImages(r, maxLength);
+    std::vector<double> rowMean(maxLength + 1, 0);
+    for (int k = 1; k <= maxLength; ++k) {
+        for (int s = 0; s <= k; ++s) rowMean[k] += imageMean(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1]);
+        if (merges && k > 1) rowMean[k] += imageMean(r.strategyImages[2 * mergeImageIndex(k, maxLength) + 1]);
+    }
+    double brightest = *std::max_element(rowMean.begin(), rowMean.end());
+    std::vector<int> stops(maxLength + 1, 0);
+    for (int k = 1; k <= maxLength; ++k)
+        if (rowMean[k] > 0) stops[k] = std::min(12, int(std::lround(std::log2(brightest / rowMean[k]))));
+    return stops;
+}
+
+// The slides' "Contributions of different paths" as a pyramid: row k = path length (segments),
+// column s = vertices from the light (t = k+1-s from the camera), one image per strategy p_{k,s}.
+// Each tile's label sits in a strip above it, never on the image: the lamp, row 1's whole
+// content, lies at the top of the frame.
+// Each row is labelled with its k in a margin on the left.
+struct PyramidLayout {
+    bool merges;  // vcm: a column "m k" of merges
+    int W, H, gap = 4, scale, strip, margin, rowH, canvasW, canvasH;
+    PyramidLayout(int width, int height, int maxLength, bool withMerges)
+        : merges(withMerges), W(width), H(height), scale(std::max(1, std::min(width / 40, height / 32))), strip(7 * scale),
+          margin(labelWidth("k=" + std::to_string(maxLength), scale) + 2 * gap), rowH(strip + H + gap),
+          canvasW(margin + (maxLength + 1 + merges) * (W + gap) + gap), canvasH(maxLength * rowH + gap) {}
+    int tileX(int k, int s, int maxLength) const { return margin + gap + (maxLength - k) * (W + gap) / 2 + s * (W + gap); }
+    int tileY(int k) const { return gap + (k - 1) * rowH + strip; }
+};
+
+inline std::string tileName(int k, int s) {  // "s1 t3", or "m k3" for the merges
+    return s == k + 1 ? "m k" + std::to_string(k) : "s" + std::to_string(s) + " t" + std::to_string(k + 1 - s);
+}
+
+// The montage of one kind (weighted or not), as sRGB bytes of layout.canvasW x layout.canvasH.
+inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLength, float exposure, bool weighted,
+                                                const PyramidLayout& layout, const std::vector<int>& rowStops) {
+    std::vector<unsigned char> canvas(size_t(layout.canvasW) * layout.canvasH * 3, 40);
+    forEachStrategyImage(maxLength, layout.merges, [&](int k, int s, int index) {
+        std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * index + weighted], exposure + rowStops[k]);
+        int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
+        blitZoomed(canvas, layout.canvasW, tile, layout.W, layout.H, 1, x0, y0);
+        std::string label = tileName(k, s) + (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
+        drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - layout.strip, label, layout.scale);
+        if (s == 0) drawLabel(canvas, layout.canvasW, layout.canvasH, layout.gap, y0 + (layout.H - layout.strip) / 2, "k=" + std::to_string(k), layout.scale);
+    });
+    return canvas;
+}
+
+// The two labelled pyramids (unweighted and MIS-weighted) beside the strategy images in dir.
+inline bool writePyramids(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
+    if (r.strategyImages.empty()) return true;
+    const PyramidLayout layout(r.image.width, r.image.height, maxLength, hasMergeImages(r, maxLength));
+    const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
+    for (int weighted = 0; weighted < 2; ++weighted) {
+        std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
+        if (!writePNGBytes(pyramidCanvas(r, maxLength, exposure, weighted, layout, rowStops), layout.canvasW, layout.canvasH, pyramid))
+            return false;
+        out << "wrote " << pyramid << "\n";
+    }
+    out << "pyramid rows k = 1.." << maxLength << " brightened by";
+    for (int k = 1; k <= maxLength; ++k) out << " +" << rowStops[k];
+    out << " stops (printed in each tile's label)\n";
+    return true;
+}

@@ -1,0 +1,119 @@
+// The lecture's file alone: bdpt.cpp compiled without classroom/ renders every method as ./bdpt
+// does, bit for bit, and every method's image at a fixed seed is what it was.
+#include "helpers.h"
+
+// FNV-1a 64 of an image's floats, rows from the top: the fingerprint tests/fixed-seed-images.txt keeps.
+static uint64_t pixelHash(const Image& img) {
+    uint64_t h = 0xcbf29ce484222325ULL;
+    const unsigned char* p = reinterpret_cast<const unsigned char*>(img.pixels.data());
+    for (size_t i = 0; i < img.pixels.size() * sizeof(Vec3); ++i) h = (h ^ p[i]) * 0x100000001b3ULL;
+    return h;
+}
+
+static std::vector<std::string> words(const std::string& text) {
+    std::istringstream in(text);
+    std::vector<std::string> w;
+    for (std::string x; in >> x;) w.push_back(x);
+    return w;
+}
+
+// ./bdpt's image (this program's runCommandLine) of scene and options at 16x16, 2 spp, seed 3.
+static Image fixedSeedImage(const std::string& scene, const std::string& options, const std::string& out) {
+    std::vector<std::string> args = {scene, "--res", "16x16", "--spp", "2", "--seed", "3", "--quiet", "--out", out};
+    for (const std::string& w : words(options)) args.push_back(w);
+    std::ostringstream so, se;
+    CAPTURE(se.str());
+    REQUIRE(runCommandLine(args, so, se) == 0);
+    Image img;
+    REQUIRE(readPFM(replaceExtension(out, ".pfm"), img));
+    return img;
+}
+
+TEST_CASE("every method's image at a fixed seed is the one tests/fixed-seed-images.txt keeps, bit for bit") {
+    std::ifstream in("tests/fixed-seed-images.txt");
+    REQUIRE(in);
+    const bool rewrite = std::getenv("REWRITE_FIXED_SEED_IMAGES") != nullptr;
+    std::ostringstream rewritten;
+    int checked = 0, methods = 0;
+    std::set<std::string> seen;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') { rewritten << line << "\n"; continue; }
+        size_t a = line.find(" | "), b = line.rfind(" | ");
+        REQUIRE(a != std::string::npos);
+        std::string scene = line.substr(0, a), options = line.substr(a + 3, b - a - 3), expected = line.substr(b + 3);
+        char got[17];
+        std::snprintf(got, sizeof got, "%016llx", (unsigned long long)pixelHash(fixedSeedImage(scene, options, "build/tmp/fixed-seed.png")));
+        rewritten << scene << " | " << options << " | " << got << "\n";
+        CAPTURE(scene);
+        CAPTURE(options);
+        if (!rewrite) CHECK(expected == got);
+        methods += seen.insert(words(options)[1]).second;
+        ++checked;
+    }
+    if (rewrite) std::ofstream("tests/fixed-seed-images.txt") << rewritten.str();
+    CHECK(checked >= 250);
+    CHECK(methods == 9);  // every method, on every committed scene
+}
+
+// A broken image must change the fingerprint: one float's last bit.
+TEST_CASE("the fingerprint sees one bit of one pixel") {
+    Image a(4, 4);
+    Image b = a;
+    b.pixels[7].y = std::nextafter(0.0f, 1.0f);
+    CHECK(pixelHash(a) != pixelHash(b));
+}
+
+TEST_CASE("bdpt.cpp alone (build/bdpt-lecture) renders every method as ./bdpt does, bit for bit") {
+    REQUIRE(fileExists("build/bdpt-lecture"));  // make test builds it: g++ ... bdpt.cpp -lstb, nothing else
+    const std::string scene = "scenes/cornell-glass.scene";
+    for (const char* options : {"--method pt", "--method nee --mis", "--method lt", "--method ir --clamp 1e-3", "--method bdpt --heuristic power",
+                                "--method vcm", "--method pssmlt --bootstrap 2000", "--method mmlt --bootstrap 2000",
+                                "--method mlt --bootstrap 2000", "--method bdpt --symmetric-refraction --no-adjoint-correction"}) {
+        CAPTURE(options);
+        Image full = fixedSeedImage(scene, options, "build/tmp/full.png");
+        std::string command = "build/bdpt-lecture " + scene + " --res 16x16 --spp 2 --seed 3 --quiet --out build/tmp/lecture.png " + options;
+        REQUIRE(std::system(command.c_str()) == 0);
+        Image lecture;
+        REQUIRE(readPFM("build/tmp/lecture.pfm", lecture));
+        CHECK(imageMean(full) > 0);
+        CHECK(std::memcmp(full.pixels.data(), lecture.pixels.data(), full.pixels.size() * sizeof(Vec3)) == 0);
+    }
+    // The per-strategy images too: the lecture writes the files, ./bdpt adds its pyramids.
+    REQUIRE(std::system("build/bdpt-lecture scenes/cornell.scene --res 16x16 --spp 2 --quiet --strategies build/tmp/lecture-strategies "
+                        "--strategy-length 3 --out build/tmp/lecture.png") == 0);
+    std::ostringstream so, se;
+    REQUIRE(runCommandLine({"scenes/cornell.scene", "--res", "16x16", "--spp", "2", "--quiet", "--strategies", "build/tmp/full-strategies",
+                            "--strategy-length", "3", "--out", "build/tmp/full.png"}, so, se) == 0);
+    int compared = 0;
+    for (const char* name : {"s0_t2", "s1_t2", "s2_t1", "s0_t4", "s2_t2", "s3_t1"})
+        for (const char* kind : {"_weighted", "_unweighted"}) {
+            Image a, b;
+            REQUIRE(readPFM(std::string("build/tmp/lecture-strategies/") + name + kind + ".pfm", a));
+            REQUIRE(readPFM(std::string("build/tmp/full-strategies/") + name + kind + ".pfm", b));
+            CHECK(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Vec3)) == 0);
+            ++compared;
+        }
+    CHECK(compared == 12);
+    CHECK(fileExists("build/tmp/full-strategies/pyramid-weighted.png"));
+    CHECK(!fileExists("build/tmp/lecture-strategies/pyramid-weighted.png"));
+}
+
+// The lecture's file reads as the slides: no tool's hook in its transport code (sections 1-8), and
+// its banners in the slides' order.
+TEST_CASE("bdpt.cpp carries only the lecture: no tool hooks before its film, sections in order") {
+    std::ifstream in("bdpt.cpp");
+    std::vector<std::string> banners;
+    int hooks = 0, lines = 0;
+    bool transport = true;
+    for (std::string line; std::getline(in, line); ++lines) {
+        if (line.rfind("// == ", 0) == 0) banners.push_back(line.substr(6, 3));
+        if (line.rfind("// == 9.", 0) == 0) transport = false;
+        std::string code = line.substr(0, line.find("//"));
+        for (const char* hook : {"RayCount&", "CostScope", "onPass", "strategyIndex(", "std::function", "gCostClock"})
+            hooks += transport && code.find(hook) != std::string::npos;
+    }
+    CHECK(hooks == 0);
+    CHECK(lines <= 4060);  // the lecture, its film, scene file and command line; tools live in classroom/
+    std::vector<std::string> expected = {"1. ", "2. ", "3. ", "4. ", "5. ", "6. ", "7. ", "8. ", "9. ", "10.", "11."};
+    CHECK(banners == expected);
+}
