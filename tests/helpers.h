@@ -28,6 +28,7 @@ struct NotesReporter : ConsoleReporter {
 }  // namespace
 }  // namespace doctest
 DOCTEST_REGISTER_REPORTER("notes", 1, doctest::NotesReporter);
+#include <tuple>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <fcntl.h>

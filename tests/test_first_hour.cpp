@@ -335,6 +335,19 @@ TEST_CASE("--side-by-side: each panel is the method's own render, the image at l
         CAPTURE(i);
         CHECK(readFile("build/tmp/fh_sbs-" + std::to_string(i + 1) + "-" + alone[i][0] + ".pfm") == readFile("build/tmp/fh_sbs_alone.pfm"));
     }
+    // An entry's deliberate mistake is its own: lt and lt without the adjoint differ where the
+    // shading normals are bumped, and each panel is that entry rendered alone.
+    REQUIRE(run({"scenes/shading-normals.scene", "--res", "32x32", "--spp", "2", "--side-by-side", "lt,lt --no-adjoint-correction",
+                 "--quiet", "--out", "build/tmp/fh_sbs_mistake.png"}).status == 0);
+    for (const char* mistake : {"", "--no-adjoint-correction"}) {
+        std::vector<std::string> args = {"scenes/shading-normals.scene", "--res", "32x32", "--spp", "2", "--quiet", "--method", "lt",
+                                         "--out", "build/tmp/fh_sbs_alone.png"};
+        if (*mistake) args.push_back(mistake);
+        REQUIRE(run(args).status == 0);
+        CAPTURE(mistake);
+        CHECK(readFile(std::string("build/tmp/fh_sbs_mistake-") + (*mistake ? "2" : "1") + "-lt.pfm") == readFile("build/tmp/fh_sbs_alone.pfm"));
+    }
+    CHECK(readFile("build/tmp/fh_sbs_mistake-1-lt.pfm") != readFile("build/tmp/fh_sbs_mistake-2-lt.pfm"));
     int w = 0, h = 0, channels = 0;
     CHECK(stbi_info("build/tmp/fh_sbs.png", &w, &h, &channels) == 1);
     CHECK(w >= 1280);

@@ -254,3 +254,27 @@ TEST_CASE("a pass makes exactly W H mutations whatever the number of chains") {
             CHECK(proposed == 3LL * 48 * 32);
         }
 }
+
+// mmlt's chains per path length: in proportion to b_k by largest remainders, and no length with
+// light left without a chain while chains remain. b = {0.7, 0.2, 0.08, 0.02} and 8 chains have the
+// shares 5.6, 1.6, 0.64 and 0.16: 5 1 1 1 (largest remainders alone give 6 1 1 0, and the image
+// loses the last length's light until a pass finds it, which no large step of mmlt's does).
+TEST_CASE("mmlt gives every lit path length a chain, the others' in proportion to b_k") {
+    auto chainsPerLength = [](std::vector<double> b, int chains) {
+        MetropolisPass mp;
+        for (double x : b) {
+            FSum s;
+            s.add(x);
+            mp.fByLength.push_back(s);
+        }
+        estimateB(mp);
+        std::vector<int> count(b.size(), 0);
+        for (int k : chainLengths(mp, chains)) ++count[k];
+        return count;
+    };
+    CHECK(chainsPerLength({0.7, 0.2, 0.08, 0.02}, 8) == std::vector<int>{5, 1, 1, 1});
+    CHECK(chainsPerLength({0.7, 0.2, 0.08, 0.02}, 100) == std::vector<int>{70, 20, 8, 2});
+    CHECK(chainsPerLength({0.7, 0.2, 0.08, 0.02}, 103) == std::vector<int>{72, 21, 8, 2});  // remainders .1 .6 .24 .06: 2, 1 more
+    CHECK(chainsPerLength({0.5, 0, 0.3, 0.2}, 2) == std::vector<int>{1, 0, 1, 0});   // fewer chains than lit lengths: the largest first
+    CHECK(chainsPerLength({0.5, 0, 0.5}, 9) == std::vector<int>{5, 0, 4});           // a dark length gets none
+}

@@ -270,3 +270,50 @@ TEST_CASE("--sampler sobol: the image does not depend on the thread count, and d
         CHECK(compareToReference(one, random).rmse > 0);
     }
 }
+
+// A pixel's camera and light streams are scrambled with keys of their own: drawn with one key,
+// the light's numbers would be the camera's own points taken in another order, and every one of
+// the light's first 256 would be among the camera's 65,536 (by chance about one in 256 is).
+TEST_CASE("a pixel's light numbers are not its camera numbers reordered: they meet no more than by chance") {
+    RenderOptions o;
+    o.seed = 7;
+    long long met = 0, drawn = 0;
+    for (int pixel : {0, 1, 517}) {
+        for (uint32_t d : {0u, 2u}) {
+            auto coordinate = [d](Rng rng) {
+                float u = 0;
+                for (uint32_t k = 0; k <= d; ++k) u = rng.uniform();
+                return uint32_t(u * 0x1p24f);
+            };
+            std::set<uint32_t> camera;
+            for (int pass = 0; pass < 65536; ++pass) camera.insert(coordinate(sampleRng(o, 0, uint64_t(pixel), uint64_t(pass))));
+            for (int pass = 0; pass < 256; ++pass) met += camera.count(coordinate(lightPathRng(o, pixel, pass))), ++drawn;
+        }
+    }
+    MESSAGE(met << " of " << drawn << " light numbers among their pixel's 65,536 camera numbers (chance: about " << drawn / 256 << ")");
+    CHECK(met < 40);  // Poisson of mean 6 (65,536 of 2^24 values each): below 40 with probability 1 - 1e-20
+}
+
+// Every pixel has its own stream, numbered y W + x: on an image wider than high, y H + x would give
+// pixel (x + H, y) the stream of (x, y + 1). lt traces one light path per pixel stream, so shared
+// streams trace the same path twice, and its splats (one per vertex, in a row's list one after
+// another) appear in two rows. One splat alone can repeat by right: a fronto-parallel wall lit
+// straight from the lamp splats the same value wherever it is seen. Two in a row do not.
+TEST_CASE("every pixel of a 64x32 image draws its own numbers: no light path of lt is traced twice in a pass") {
+    Scene scene = sceneAt("scenes/cornell.scene", 64, 32);
+    Rendering rendering(scene, quietOptions(Method::LT, 1, 5));
+    rendering.addPass();
+    std::map<std::tuple<int, float, int, float>, std::set<int>> rowsOf;  // two splats in a row, and the rows that made them
+    size_t pairs = 0;
+    for (int y = 0; y < 32; ++y) {
+        const std::vector<Splat>& s = rendering.rows[y].splats;
+        for (size_t i = 0; i + 1 < s.size(); ++i)
+            if (!isBlack(s[i].value) && !isBlack(s[i + 1].value))
+                rowsOf[{s[i].pixel, s[i].value.y, s[i + 1].pixel, s[i + 1].value.y}].insert(y), ++pairs;
+    }
+    int repeated = 0;
+    for (const auto& entry : rowsOf) repeated += entry.second.size() > 1;
+    MESSAGE(pairs << " pairs of splats, " << repeated << " of them made in two rows");
+    CHECK(pairs > 1000);
+    CHECK(repeated == 0);
+}
