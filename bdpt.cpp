@@ -3494,20 +3494,17 @@ inline std::string printable(const std::string& s) {  // binary garbage must not
     return s.size() > 40 ? out + "..." : out;
 }
 
-// Levenshtein's distance of two short words: how many letters to add, drop or change.
+// The distance of two short words: how many letters to add, drop or change, or neighbours to swap
+// ("bpdt" is one swap from "bdpt"; Damerau's optimal string alignment).
 inline size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diagonal = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-            diagonal = up;
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); ++i)
+        for (size_t j = 0; j <= b.size(); ++j) {
+            if (i == 0 || j == 0) { d[i][j] = i + j; continue; }
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
         }
-    }
-    return row[b.size()];
+    return d[a.size()][b.size()];
 }
 // The known word closest to a misspelt one, if it is close (a quarter of its letters or two,
 // whichever is more): "" otherwise.
@@ -3816,7 +3813,8 @@ struct ArgReader {
             if (v == names[k]) return E(k);
             list += (k ? ", " : "") + std::string(names[k]);
         }
-        fail(std::string("unknown ") + what + " '" + printable(v) + "' (" + list + ")");
+        std::string near = closestWord(v, std::vector<std::string>(names, names + N));
+        fail(std::string("unknown ") + what + " '" + printable(v) + "' (" + (near.empty() ? list : "did you mean " + near + "? " + list) + ")");
     }
     int mutationList() {  // --mutations: MutationBits, the bidirectional mutation among them
         std::string name = args[i], v = value(), word;

@@ -254,6 +254,8 @@ TEST_CASE("--live: the PNG is rewritten whole while rendering, and the log grows
 TEST_CASE("did you mean: a misspelt option, material or scene path gets the likely one") {
     CHECK(contains(run({"scenes/furnace.scene", "--samples", "4"}).err, "unknown option '--samples' (did you mean --spp?)"));
     CHECK(contains(run({"scenes/furnace.scene", "--heuristc", "max"}).err, "unknown option '--heuristc' (did you mean --heuristic?)"));
+    CHECK(contains(run({"scenes/furnace.scene", "--method", "bpdt"}).err, "unknown method 'bpdt' (did you mean bdpt? pt, nee, lt, ir, bdpt"));
+    CHECK(contains(run({"scenes/furnace.scene", "--method", "magic"}).err, "unknown method 'magic' (pt, nee, lt, ir, bdpt, vcm"));
     CHECK(run({"scenes/furnace.scene", "--zzzzzz"}).err == "bdpt: unknown option '--zzzzzz' (see --help)\n");  // nothing close: no guess
     Run r = run({"furnace.scene", "--spp", "1"});
     CHECK(r.status == 2);
