@@ -35,8 +35,7 @@
 #include <vector>
 #include <sys/stat.h>
 #include <unistd.h>
-// stb_image_write: Debian's libstb-dev (the header in stb/, its code in -lstb), or where that is
-// missing the single header itself, compiled here: make STB_DIR=FOLDER (README, set-up).
+// stb_image_write: Debian's libstb-dev, or without it the header compiled here (make STB_DIR=FOLDER).
 #ifdef BDPT_STB_HEADER
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
@@ -93,15 +92,13 @@ struct Rng {
         uint32_t shifted = uint32_t(((old >> 18u) ^ old) >> 27u), rot = uint32_t(old >> 59u);
         return (shifted >> rot) | (shifted << ((-rot) & 31));
     }
-    // Low-discrepancy mode (sampleRng sets it): the next number is coordinate `dimension` of this
-    // sample's scrambled Sobol point (section 1, below), its first 24 binary digits.
+    // Low-discrepancy mode (sampleRng sets it): the next number is coordinate `dimension` of a Sobol point.
     bool lowDiscrepancy = false, scrambled = true;
     uint32_t dimension = 0;
     uint64_t scrambleKey = 0;
     uint32_t point[kLowDiscrepancyDimensions] = {};
     inline void scrambleCoordinates(uint32_t first);
-    // [0,1), 24 exact bits. Inlined always: it is called for every number every method draws, and
-    // the replay branch makes it look too large to GCC's inliner.
+    // [0,1), 24 exact bits. Inlined always: every number of every method passes here.
     [[gnu::always_inline]] float uniform() {
         if (replay) return replayUniform(*replay);
         if (lowDiscrepancy && dimension < kLowDiscrepancyDimensions) {
@@ -149,8 +146,7 @@ constexpr uint32_t reverseBits(uint32_t x) {
     return ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
 }
 
-// Dimension d >= 1: the primitive polynomial x^s + a_1 x^(s-1) + ... + a_(s-1) x + 1 (degree s,
-// coefficients a_1..a_(s-1) as the bits of `a`, a_1 the highest) and m_1..m_s (odd, m_k < 2^k).
+// Dimension d >= 1: the polynomial x^s + a_1 x^(s-1) + ... + 1 (a_1.. the bits of `a`) and m_1..m_s.
 struct SobolPolynomial {
     uint32_t degree, a, m[7];
 };
@@ -166,9 +162,8 @@ constexpr SobolPolynomial kJoeKuo[kLowDiscrepancyDimensions - 1] = {
     {7, 32, {1, 3, 7, 5, 13, 19, 59}}, {7, 37, {1, 1, 3, 9, 25, 29, 41}}, {7, 41, {1, 3, 5, 13, 23, 1, 55}},
     {7, 42, {1, 3, 7, 3, 13, 59, 17}},
 };
-// The generator matrices' columns, in digit order (bit j = the fraction's digit j+1, so that
-// scrambleDigits below sees "earlier digits" as lower bits). Column k is m_k / 2^k, and past the
-// initial ones Sobol's recurrence m_k = 2 a_1 m_(k-1) ^ 4 a_2 m_(k-2) ^ ... ^ 2^s m_(k-s) ^ m_(k-s).
+// The generator matrices' columns in digit order (bit j = the fraction's digit j+1): column k is
+// m_k / 2^k, then Sobol's recurrence m_k = 2 a_1 m_(k-1) ^ 4 a_2 m_(k-2) ^ ... ^ 2^s m_(k-s) ^ m_(k-s).
 struct SobolMatrices {
     uint32_t column[32][kLowDiscrepancyDimensions];  // [k][d]: column k of every C_d side by side
 };
@@ -193,9 +188,8 @@ constexpr SobolMatrices makeSobolMatrices() {
 }
 constexpr SobolMatrices kSobol = makeSobolMatrices();
 
-// The nested uniform scramble in digit order: each bit flipped by a hash of the bits below it.
-// Adding the seed and xor-ing x with even multiples of itself does exactly that (carries move up,
-// never down): Laine and Karras's hash (2011), with Burley's constants (2020).
+// The nested uniform scramble in digit order: each bit flipped by a hash of the bits below it, as
+// adding the seed and xor-ing even multiples does (Laine and Karras 2011, Burley's constants 2020).
 inline uint32_t scrambleDigits(uint32_t digits, uint32_t seed) {
     digits += seed;
     digits ^= digits * 0x6C50B47Cu;
@@ -204,8 +198,7 @@ inline uint32_t scrambleDigits(uint32_t digits, uint32_t seed) {
     digits ^= digits * 0x8D22F6E6u;
     return digits;
 }
-// The scramble's seed of dimension d: the (d+1)-th step of an LCG started at the stream's key,
-// reached in one multiply-add by composing the steps (x -> a x + c, d+1 times) at compile time.
+// Dimension d's scramble seed: step d+1 of an LCG from the stream's key, the steps composed at compile time.
 struct LcgJump {
     uint64_t mul, add;
 };
@@ -239,8 +232,7 @@ inline uint32_t fractionDigits(uint32_t digits) {
     return uint32_t(r[digits & 255]) << 16 | uint32_t(r[(digits >> 8) & 255]) << 8 | r[(digits >> 16) & 255];
 }
 
-// Sample `index`'s point in digit order, unscrambled: the xor of the columns of C_d picked by
-// index's bits, for four dimensions at a time (GCC's and Clang's vectors: SSE registers on x86).
+// Sample `index`'s point, unscrambled: the xor of C_d's columns picked by index's bits, four dimensions at once.
 inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
     typedef uint32_t FourDimensions __attribute__((vector_size(16)));
     FourDimensions point[kLowDiscrepancyDimensions / 4] = {};
@@ -270,9 +262,8 @@ inline uint32_t shuffledIndex(uint32_t index, uint32_t seed) {
     uint32_t low = reverseBits(scrambleDigits(reverseBits(index & 0xFFFFu), seed)) & 0xFFFFu;
     return (index & ~0xFFFFu) | low;
 }
-// Coordinates first..first+3, scrambled by their own seeds (or not: --no-scramble, the mistake)
-// and turned into binary fractions. uniform() asks for the next four as it starts a block of four:
-// four independent hashes, done while the caller uses its numbers, cost less than one at a time.
+// Coordinates first..first+3, scrambled by their own seeds (not with --no-scramble, the mistake),
+// as fractions; uniform() asks for four at a time: four independent hashes overlap.
 inline void Rng::scrambleCoordinates(uint32_t first) {
     for (uint32_t d = first; d < first + 4; ++d) {
         const LcgJump& jump = kScrambleSeeds.step[d];
@@ -320,15 +311,12 @@ struct Conventions {
 
 // == 2. Geometry: spheres and parallelograms ===================================================
 // A ray is o + t d with t in (0, tmax). A hit point computed in floats lies off the surface by a
-// rounding error, and a new ray started there may hit its own surface again ("acne"). So every
-// hit point carries a bound on its error, pError per coordinate (pbrt-v3 3.9: a sphere's point
-// is reprojected onto the sphere, a quad's recomputed as q + a u + b v, each a few gamma_n), and
-// a new ray starts from the point pushed off along ng by |ng|.pError, rounded away from the
-// surface: the smallest push that provably clears the surface. Both ends of a shadow ray are
-// pushed the same way, so visibility is the same whichever side a method traces it from.
-// Why not a fixed rule of thumb like 5e-5 (1 + max|p|): it is absolute below |p| = 1 and
-// hundreds of ulps above, so it is far too large for small scenes and thin gaps. A lamp 0.5 mm
-// above a floor (tests/thin-gap.scene, lecture_notes/figures/thin-gap.png) then loses part of its
+// rounding error, and a new ray started there may hit its own surface again ("acne"). So every hit
+// point carries a bound on its error, pError per coordinate (pbrt-v3 3.9), and a new ray starts
+// from the point pushed off along ng by |ng|.pError, rounded away from the surface: the smallest
+// push that provably clears it, at both ends of a shadow ray, so that visibility is the same
+// whichever side a method traces it from. A fixed rule of thumb, 5e-5 (1 + max|p|), is far too
+// large for small scenes: a lamp 0.5 mm above a floor (tests/thin-gap.scene) then loses part of its
 // light in lt but not in pt, and methods disagree; with the bound all agree (tests).
 struct Ray {
     Vec3 o, d;
@@ -359,9 +347,8 @@ struct Hit {
     bool found() const { return shape >= 0; }
 };
 
-// Ray-sphere with the two precision fixes of Haines et al. ("Precision Improvements for
-// Ray/Sphere Intersection", Ray Tracing Gems ch. 7): the discriminant from the closest-approach
-// vector, and the smaller root from c/q. Returns the nearest t in (0, tmax), or kInf.
+// Ray-sphere with Haines et al.'s two precision fixes (Ray Tracing Gems ch. 7): the discriminant from
+// the closest-approach vector, the smaller root from c/q. The nearest t in (0, tmax), or kInf.
 inline float intersectSphere(Vec3 centre, float radius, const Ray& r) {
     Vec3 f = r.o - centre;
     float b = dot(f, r.d);                       // d is unit length
@@ -377,8 +364,7 @@ inline float intersectSphere(Vec3 centre, float radius, const Ray& r) {
     return kInf;
 }
 
-// Ray-parallelogram: plane hit, then the point's (a,b) coordinates in the edge basis, with
-// w = n/(n.n), n = u x v (precomputed by the BVH; the same arithmetic either way).
+// Ray-parallelogram: plane hit, then the point's (a,b) in the edge basis, w = n/(n.n), n = u x v.
 inline Vec3 quadW(Vec3 u, Vec3 v) {
     Vec3 n = cross(u, v);
     return n / dot(n, n);
@@ -398,9 +384,8 @@ inline float intersectShape(const Shape& s, const Ray& r) {
     return s.type == Shape::Sphere ? intersectSphere(s.p, s.radius, r) : intersectQuad(s, r);
 }
 
-// Everything the shading code needs at a hit: position and its error bound, geometric normal ng
-// (the shape's front side), shading normal ns (equal to ng unless the shape has a bump), and
-// which shape.
+// What the shading code needs at a hit: position and its error bound, geometric normal ng (the
+// shape's front side), shading normal ns (ng unless the shape has a bump or tilt), and the shape.
 struct SurfacePoint {
     Vec3 p, ng, ns;
     Vec3 pError;       // |computed p - exact surface point| <= pError, per coordinate
@@ -415,10 +400,9 @@ inline Vec3 geometricNormal(const Shape& s, Vec3 p) {
     return s.type == Shape::Sphere ? s.side * normalize(p - s.p) : s.normal;
 }
 
-// The "procedural bump" of a shape tilts the shading normal by a smooth tangential pattern:
-// ns = normalize(ng + A (g - (g.ng) ng)), g = (sin f x, sin f y, sin f z). One directive, no maps.
-// A quad's "tilt" turns ns by one constant angle toward its edge u: the slides' "energy
-// generator" at its plainest, one ratio |wo.ns|/|wo.ng| for every point (lecture notes, page 13).
+// A shape's "bump" tilts the shading normal by a smooth pattern, ns = normalize(ng + A (g - (g.ng)
+// ng)), g = (sin f x, sin f y, sin f z); a quad's "tilt" turns ns by one angle toward its edge u:
+// the slides' "energy generator" at its plainest, one ratio |wo.ns|/|wo.ng| (notes, page 13).
 inline Vec3 shadingNormal(const Shape& s, Vec3 p, Vec3 ng) {
     if (s.shading == Shape::ShadingNormal::Geometric) return ng;  // one test on the common path
     if (s.shading == Shape::ShadingNormal::Tilt) return s.tiltedNormal;
@@ -453,10 +437,9 @@ inline SurfacePoint makeSurfacePoint(const Shape& s, int shapeIndex, Vec3 p, boo
     return sp;
 }
 
-// p pushed off its surface (normal ng, error pError) to the side of dir: by |ng|.pError along
-// ng, then each coordinate rounded one float further away, so the rounding of the addition
-// cannot bring it back (pbrt-v3 OffsetRayOrigin). Inlined always: every ray and both ends of
-// every shadow ray pass here (ir: per VPL), and a call costs ir 4% of its time.
+// p pushed off its surface (normal ng, error pError) to the side of dir by |ng|.pError, each
+// coordinate rounded one float further away (pbrt-v3 OffsetRayOrigin). Inlined always: every ray
+// and both ends of every shadow ray pass here; as a call it costs ir 4% of its time.
 [[gnu::always_inline]] inline Vec3 offsetRayOrigin(Vec3 p, Vec3 pError, Vec3 ng, Vec3 dir) {
     float d = dot(absVec(ng), pError);
     Vec3 offset = (dot(dir, ng) > 0 ? d : -d) * ng, o = p + offset;
@@ -466,11 +449,8 @@ inline SurfacePoint makeSurfacePoint(const Shape& s, int shapeIndex, Vec3 p, boo
 }
 inline Ray spawnRay(const SurfacePoint& sp, Vec3 dir) { return {offsetRayOrigin(sp.p, sp.pError, sp.ng, dir), dir, kInf}; }
 
-// A shadow ray between two points, each pushed off its own surface toward the other; a point
-// without a surface (point light, pinhole) has a zero normal and stays where it is. The pushes
-// clear both surfaces; the far end is also brought 1e-4 of the length closer (pbrt's
-// ShadowEpsilon), since the target's own hit distance is computed with an error that grows
-// with the length, not with the target's coordinates.
+// A shadow ray between two points, each pushed off its own surface toward the other; the far end
+// 1e-4 of the length closer (pbrt's ShadowEpsilon): the hit distance's error grows with the length.
 inline Ray shadowRay(const SurfacePoint& from, const SurfacePoint& to) {
     Vec3 d = to.p - from.p;
     Vec3 o = isBlack(from.ng) ? from.p : offsetRayOrigin(from.p, from.pError, from.ng, d);
@@ -507,24 +487,20 @@ struct Camera {
 
 // == 3. Acceleration: a wide BVH ===============================================================
 // Not a slide's topic but appendix B's: on a first read, skip to `struct Scene` at the end of this
-// section, whose intersect() and occluded() are all the methods ask of it.
-// Tracing a ray means finding the closest of N shapes; a bounding volume hierarchy makes that
-// about log N box tests instead of N shape tests.
+// section, whose intersect() and occluded() are all the methods ask of it. A bounding volume
+// hierarchy finds the closest of N shapes in about log N box tests instead of N shape tests.
 // Build: binned SAH. Split a set of shapes where the surface area heuristic
 //   cost = A(left)/A * N(left) + A(right)/A * N(right)
-// is smallest, over 16 bins of centroid positions on each axis; split the child with the
-// largest area again until a node has W children (W = 4 with SSE, 8 with AVX). A leaf is one
-// shape, stored in leaf order: the node's W-wide box test then screens W shapes at once before
-// any exact test, and a shape's exact test reads only the little its kind needs. With many
-// shapes incoherent rays wait on memory, not on arithmetic, so bytes matter more than tests
-// (appendix B measures both choices; `make bench` races Embree on the same rays).
-// Traverse: each node keeps its W child boxes as structure-of-arrays (all min-x together, ...),
-// so one SIMD slab test checks all children. Closest hit visits children front to back and
-// skips any box farther than the hit found so far; any hit (shadow rays) stops at the first hit.
-// Robustness: a zero direction component gives an infinite inverse; where the origin lies on a
-// slab's plane that makes 0*inf = NaN, which the operand order of min/max below ignores (SSE
-// min/max return their second operand on NaN), so the ray counts as inside that slab. Box
-// exits are widened by 1+2gamma_3 so float rounding never loses a hit at a box edge (pbrt).
+// is smallest, over 16 bins of centroids per axis; split the child with the largest area again
+// until a node has W children (W = 4 with SSE, 8 with AVX). A leaf is one shape, in leaf order:
+// the W-wide box test screens W shapes at once, and a shape's exact test reads only what its kind
+// needs; incoherent rays wait on memory, not arithmetic (appendix B; `make bench` races Embree).
+// Traverse: each node keeps its W child boxes as structure-of-arrays, so one SIMD slab test checks
+// all children; closest hit visits them front to back and skips boxes beyond the hit so far; any
+// hit (shadow rays) stops at the first. A zero direction component gives an infinite inverse, and
+// 0*inf = NaN where the origin lies on a slab's plane: the operand order of min/max below ignores
+// it (SSE returns the second operand on NaN). Box exits are widened by 1+2gamma_3 so that
+// rounding never loses a hit at a box edge (pbrt).
 #if defined(__SSE2__)
 #include <immintrin.h>
 #endif
@@ -555,14 +531,11 @@ inline Aabb shapeBounds(const Shape& s) {
     return b;
 }
 
-// What the leaves hold: just enough to intersect, in leaf order, one array per kind so that a
-// sphere costs 16 bytes (a quarter of a cache line) and a quad 48.
+// What the leaves hold, in leaf order: just enough to intersect (a sphere 16 bytes, a quad 48).
 struct SpherePrimitive { Vec3 centre; float radius; };
 struct QuadPrimitive { Vec3 q, u, v, w; };  // corner, edges, w = n/(n.n)
 
-// Node width: 8 children where the CPU has 256-bit AVX registers (make NATIVE=1), else 4 (SSE).
-// Lanes holds one float per child, and SIMD(op) names the intrinsic of that width: the slab test
-// below is written once for both.
+// Node width: 8 children with AVX (make NATIVE=1), else 4 (SSE); SIMD(op) names that width's intrinsic.
 #if defined(__AVX__)
 constexpr int kWidth = 8;
 using Lanes = __m256;
@@ -617,8 +590,7 @@ struct BvhBuilder {
         for (int i = b; i < e; ++i) box.grow(refs[i].box);
         return box;
     }
-    // Binned SAH: one pass bins the shapes on all three axes, one partitions them; returns the
-    // first index of the right half and the two halves' boxes.
+    // Binned SAH on all three axes; returns the right half's first index and the halves' boxes.
     int split(int b, int e, Aabb& leftBox, Aabb& rightBox) {
         constexpr int kBins = 16;
         Aabb cb;
@@ -763,8 +735,7 @@ struct RayBoxTest {
     }
 };
 
-// Closest hit: nearest child first, each hit shortening the ray, so that farther boxes drop out.
-// Any hit (anyHit, shadow rays): the first hit ends it, and its Hit says found() and nothing more.
+// Closest hit: nearest child first, each hit shortening the ray; any hit (shadow rays): the first ends it.
 template <bool anyHit>
 inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
     Hit hit;
@@ -793,12 +764,10 @@ inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
                 }
                 continue;
             }
-            // Ask for the child's cache lines now, long before it is popped: on a large scene
-            // the wait for a node's first load was most of a ray's time.
+            // Ask for the child's cache lines now, long before it is popped (large scenes wait on them).
             const char* child = reinterpret_cast<const char*>(&bvh.nodes[n.child[i]]);
             for (size_t line = 0; line < sizeof(BvhNode); line += 64) __builtin_prefetch(child + line);
-            // Any hit ends a shadow ray's search and none shortens it: the order of the rest
-            // does not matter, and sorting them costs more than it saves.
+            // A shadow ray's hits do not shorten it: sorting its children costs more than it saves.
             if (anyHit) { stack[top++] = {n.child[i], tEntry[i]}; continue; }
             // Insert so that the nearest child ends on top of the stack (front to back).
             int j = top++;
@@ -809,8 +778,7 @@ inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
     return hit;
 }
 
-// -- The scene, and the two queries every method makes of it: the closest hit along a ray, and
-// whether anything lies between two points (a shadow ray).
+// -- The scene, and the two queries every method makes of it: the closest hit, and a shadow ray.
 struct Scene {
     std::string file;
     Camera camera;
@@ -821,9 +789,7 @@ struct Scene {
     float totalPower = 0;
     std::shared_ptr<const Bvh> bvh;    // shared by copies: a copy of a Scene costs its few shapes
     bool bruteForce = false;           // true: the plain loop over shapes, for tests and teaching
-    // Not from the file: the run's deliberate mistakes (section 1), kept beside the scene because
-    // the functions that apply them (BSDFs, hit points, subpath densities) all read the scene; a
-    // run with other mistakes renders a copy (classroom/'s side by side: one per panel).
+    // The run's deliberate mistakes (section 1): the functions that apply them all read the scene.
     Conventions conventions;
     float exposure = 0;                // the PNG's default exposure in stops (--exposure overrides)
 };
@@ -844,14 +810,12 @@ inline bool occludedBruteForce(const std::vector<Shape>& shapes, const Ray& ray)
 }
 inline void buildAcceleration(Scene& scene) { scene.bvh = std::make_shared<const Bvh>(buildBvh(scene.shapes)); }
 
-// Rays traced by this thread: what a sample costs, the slides' "more costly", counted where it is
-// paid. A render adds up its threads' counts (parallelRows) and reports them per sample.
+// Rays traced by this thread: the slides' "more costly", counted where paid (parallelRows sums them).
 struct RayCount {
     long long closest = 0, shadow = 0;
 };
 inline thread_local RayCount gRaysTraced;
-// classroom/'s --profile times the parts of a sample (tracing here, MIS and merging in section 8)
-// by defining PROFILE_PART before it includes this file; in this program it is nothing.
+// classroom/'s --profile defines PROFILE_PART to time a sample's parts (tracing, MIS, merging); here nothing.
 #ifndef PROFILE_PART
 #define PROFILE_PART(part)
 #endif
@@ -873,19 +837,17 @@ inline SurfacePoint surfaceAt(const Scene& scene, const Ray& ray, const Hit& hit
 // == 4. Materials: BSDFs, and where transport stops being symmetric ===========================
 // Slides: "Extension of paths at hit points" ("reciprocity of BRDF under reflection, but be
 // careful with refraction!"), "Use of shading normals", "Power versus radiance".
-// Every query takes wo, the direction the path arrived from, and wi, the next direction. On a
-// camera path wo points toward the eye and radiance flows wi -> wo; on a light path wo points
-// toward the light and importance flows wi -> wo (light itself flows wo -> wi). evalBsdf gives
-// the factor a path vertex contributes, cosine included:
+// Every query takes wo, the direction the path arrived from, and wi, the next one. On a camera
+// path wo points toward the eye and radiance flows wi -> wo; on a light path wo points toward the
+// light and importance flows wi -> wo. evalBsdf gives the factor a vertex contributes, cosine in:
 //   Radiance:    f(wo,wi) |wi.ns|
 //   Importance:  f(wi,wo) |wi.ns| * |wo.ns||wi.ng| / (|wo.ng||wi.ns|)      (Veach 1997, ch. 5)
-// The second factor is the adjoint of a shading-normal BSDF: the geometry term G(x,y) holds
-// geometric cosines, the shading model replaces one by a shading cosine, and only on the radiance
-// side does the ratio cancel (bounded weights). On the importance side it is unbounded as
-// |wo.ng| -> 0. The "energy generator" is the BSDF itself, the same for both: eye paths render
-// its extra light as a bright surface, light paths as large weights (notes, page 13).
-// G's two cosines therefore live here, one at each end of a segment; connections multiply two
-// such factors (or an emitter/camera cosine) by V/d^2.
+// The second factor is the adjoint of a shading-normal BSDF: G(x,y) holds geometric cosines, the
+// shading model replaces one by a shading cosine, and only on the radiance side does the ratio
+// cancel; on the importance side it is unbounded as |wo.ng| -> 0. The "energy generator" is the
+// BSDF itself: eye paths render its extra light as a bright surface, light paths as large weights
+// (notes, page 13). G's two cosines live here, one at each end of a segment; a connection
+// multiplies two such factors (or an emitter's or the camera's cosine) by V/d^2.
 // Refraction: radiance crossing into a denser medium is compressed into a smaller solid angle,
 // L_t = (eta_t/eta_i)^2 (1-F) L_i, while power/importance keeps (1-F) only.
 enum class Transport { Radiance, Importance };
@@ -920,11 +882,10 @@ inline float adjointCorrection(const Scene& scene, const SurfacePoint& sp, Vec3 
 }
 
 // Non-delta part only: mirrors and glass return 0 (a connection cannot hit a delta direction).
-// A reflection needs wo and wi on one side of the geometric surface (no light leaks) and both
-// above the shading normal: the shading BSDF is then symmetric, and its adjoint differs only by
-// the correction factor, so radiance and importance transport agree on where it vanishes.
-// One call gives what a connection needs at a vertex (as SmallVCM's BSDF::Evaluate): f |cos wi|
-// and, in pdf and pdfReverse, the solid-angle densities of sampling wi from wo and wo from wi.
+// wo and wi must lie on one side of the geometric surface (no light leaks) and above the shading
+// normal, so that radiance and importance transport agree on where the BSDF vanishes. One call
+// gives what a connection needs at a vertex (as SmallVCM's BSDF::Evaluate): f |cos wi| and, in pdf
+// and pdfReverse, the solid-angle densities of sampling wi from wo and wo from wi.
 inline Vec3 evalBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode, float& pdf, float& pdfReverse) {
     pdf = pdfReverse = 0;
     const Material& m = scene.materials[scene.shapes[sp.shape].material];
@@ -946,8 +907,7 @@ inline Vec3 evalBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 w
     return m.albedo * (f * cosI * adjointCorrection(scene, sp, wo, wi, mode));
 }
 
-// A mirror's or smooth dielectric's probability of reflecting light that arrives along wo (F, or 1
-// for a mirror); sampleBsdf reflects with it and refracts otherwise.
+// A mirror's or glass's probability of reflecting light arriving along wo (F, or 1 for a mirror).
 inline float specularReflectance(const Scene& scene, const SurfacePoint& sp, Vec3 wo) {
     const Material& m = scene.materials[scene.shapes[sp.shape].material];
     if (m.type == Material::Mirror) return 1;
@@ -956,8 +916,7 @@ inline float specularReflectance(const Scene& scene, const SurfacePoint& sp, Vec
 }
 
 // The delta lobe of a mirror or glass: reflection or (glass) refraction of wo. pdf is the lobe's
-// discrete probability (F or 1-F), weight (f cos / delta) / pdf. Veach's perturbations (section
-// (h)) call it to carry a path through the component it had.
+// probability (F or 1-F), weight (f cos / delta) / pdf. Veach's perturbations keep a path's lobes.
 inline bool specularScatter(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Transport mode, bool refract, BsdfSample& bs) {
     const Material& m = scene.materials[scene.shapes[sp.shape].material];
     Vec3 n = facingShadingNormal(sp, wo);
@@ -1012,9 +971,8 @@ inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Tran
 // Slide "Generating light paths": p(x, Theta_x) = Le(x,Theta_x) |Theta_x . N_x| / Phi. A light is
 // chosen with probability Phi_light / Phi, a point uniformly on its area (pdf 1/A), a direction
 // with density |cos| / pi; then Le |cos| / (p_A p_omega) = Phi for every sample. Point lights have
-// a delta position (no surface: nothing can hit them) and emit I uniformly: Phi = 4 pi I.
-// Emitters radiate from their front side only: a quad from its u x v side, a sphere from its
-// outside ("inside" flips it). Sampling and evaluation use the same normal and sidedness.
+// a delta position (nothing can hit them) and emit I uniformly: Phi = 4 pi I. Emitters radiate
+// from their front side only: a quad's u x v side, a sphere's outside ("inside" flips it).
 inline Vec3 emittedRadiance(const Scene& scene, const SurfacePoint& sp, Vec3 w) {
     return dot(w, sp.ng) > 0 ? scene.shapes[sp.shape].emission : Vec3(0);
 }
@@ -1104,14 +1062,13 @@ inline EmissionSample sampleEmission(const Scene& scene, Rng& rng) {
 }
 
 // == 6. Camera: a pinhole, and its importance ==================================================
-// Slide "Generating eye paths": p(y,Theta_y) ~ W(y,Theta_y) |Theta_y . N_y|. For a pinhole the
-// image rectangle sits at distance 1 with area A. A direction at angle theta to the axis meets
-// it where dA = d omega / cos^3(theta); choosing a uniform point on the rectangle gives
+// Slide "Generating eye paths": p(y,Theta_y) ~ W(y,Theta_y) |Theta_y . N_y|. The pinhole's image
+// rectangle sits at distance 1 with area A; a direction at angle theta to the axis meets it where
+// dA = d omega / cos^3(theta), so a uniform point on the rectangle gives
 //   p_omega = 1 / (A cos^3 theta),   and   W_e = 1 / (A cos^4 theta)
-// is the importance that makes W_e cos / p_omega = 1 and integrates, with cos, to 1 over the
-// image. Normalized per pixel (area A / (width*height)), W_j = width*height / (A cos^4 theta)
-// inside pixel j: a camera sample then measures the pixel's mean radiance, and a light path
-// connected to the pinhole splats with this W_j (section 7).
+// makes W_e cos / p_omega = 1 and integrates, with cos, to 1 over the image. Per pixel (area
+// A / (width*height)), W_j = width*height / (A cos^4 theta) inside pixel j: a camera sample
+// measures the pixel's mean radiance, and a light path connected to the pinhole splats with W_j.
 // A uniform film coordinate in pixel x: x + u rounds up to x + 1 for large x and u near 1 (in
 // float, 16383 + 0.99999994 = 16384), which would lie outside the image; keep it below x + 1.
 inline float filmCoordinate(int x, float u) { return std::min(float(x) + u, std::nextafter(float(x + 1), 0.0f)); }
@@ -1122,8 +1079,7 @@ inline Ray cameraRay(const Camera& cam, float filmX, float filmY) {  // film coo
     return {cam.eye, normalize(cam.forward + x * cam.right + y * cam.up), kInf};
 }
 
-// A camera sample of pixel (x, y): a uniform point in it, its x drawn first (a braced list is
-// evaluated left to right), so that every method's pixel stream starts the same way.
+// A camera sample of pixel (x, y): a uniform point in it, x drawn first in every method.
 struct FilmPoint {
     float x, y;
 };
@@ -1131,8 +1087,7 @@ inline FilmPoint jitteredFilmPoint(int x, int y, Rng& rng) {
     float u1 = rng.uniform(), u2 = rng.uniform();
     return {filmCoordinate(x, u1), filmCoordinate(y, u2)};
 }
-// A uniform point on the whole film (the Metropolis methods' camera samples): the pixel is where
-// u W falls, the point in it the rest; pixelAt names the pixel.
+// A uniform point on the whole film (the Metropolis methods'); pixelAt names its pixel.
 inline FilmPoint uniformFilmPoint(const Camera& cam, Rng& rng) {
     float fx = rng.uniform() * cam.width, fy = rng.uniform() * cam.height;
     int px = std::min(int(fx), cam.width - 1), py = std::min(int(fy), cam.height - 1);
@@ -1197,8 +1152,7 @@ inline void setResolution(Camera& cam, int width, int height) {
 enum class Method { PT, NEE, LT, IR, BDPT, VCM, PSSMLT, MMLT, MLT };
 inline bool isMetropolis(Method m) { return m == Method::PSSMLT || m == Method::MMLT || m == Method::MLT; }  // section 8 (h)
 // How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
-// Albedo, q = the material's albedo at every vertex, folded into bdpt's MIS densities; Off, only
-// the depth limit. bdpt's banner says which it uses and why.
+// Albedo, q = the albedo at every vertex, in bdpt's MIS densities (its banner: why); Off, depth only.
 enum class Roulette { Throughput, Albedo, Off };
 enum class Sampler { Sobol, Random };  // section 1: Owen-scrambled Sobol points, or PCG32 alone
 enum class Heuristic { Balance, Power, Max, Uniform };  // bdpt's MIS heuristics (its banner)
@@ -1235,10 +1189,8 @@ struct RenderOptions : SampleOptions {
     int threads = 0;           // 0: all cores
 };
 
-// The numbers of sample `index` of stream `stream` (a pixel, a light path, a VPL path; `salt`
-// tells the kinds apart, 0 the camera's): PCG32 for --sampler random, else its low-discrepancy
-// points, each stream's scrambled apart from the seed, so that seeds and pixels give independent
-// estimates; every stream but the camera's draws them in its own order (shuffledIndex).
+// The numbers of sample `index` of a stream (a pixel, light path, VPL path; `salt` the kind, 0 the
+// camera's): PCG32, or Sobol points scrambled per stream and seed, in the stream's own order.
 inline Rng sampleRng(const SampleOptions& opt, uint64_t salt, uint64_t stream, uint64_t index) {
     Rng rng = makeRng(opt.seed ^ salt, stream, index);
     if (opt.sampler == Sampler::Random) return rng;
@@ -1256,9 +1208,8 @@ struct Splat {                 // a light-path contribution that lands on some p
     Vec3 value;
 };
 
-// One strategy's contribution to a pixel, unweighted and its MIS weight: the slides' "contributions
-// of different paths", one image per strategy (section 9), and mlt's candidate starts (section 8).
-// A merge (vcm) of the light vertex s (0-based) with the camera vertex t-1 has merge set.
+// One strategy's contribution to a pixel and its MIS weight: the slides' "contributions of different
+// paths" (section 9), and mlt's candidate starts; a merge (vcm) of light vertex s with camera t-1.
 struct StrategySplat {
     int pixel;
     Vec3 value;
@@ -1275,8 +1226,7 @@ struct RowOutput {
     double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: what the clamp removed
 };
 
-// What a method prepared for the whole pass before its pixels: ir's virtual point lights, vcm's
-// light subpaths and grid, the Metropolis chains (section 9 makes them; the types come with each method).
+// What a method prepared for the whole pass: ir's VPLs, vcm's light subpaths, the Metropolis chains.
 struct Vpl;
 struct VcmPass;
 struct MetropolisPass;
@@ -1287,8 +1237,7 @@ struct PassData {
     const MetropolisPass* metropolis = nullptr;
 };
 
-// Runs body(row) for rows 0..rows-1 on `threads` threads, the calling one among them; what the
-// others traced is added to the calling thread's ray count, so that a render counts its rays.
+// Runs body(row) for every row on `threads` threads, the caller among them, whose ray count gets theirs.
 template <class Body>
 inline void parallelRows(int rows, int threads, const Body& body) {
     std::atomic<int> nextRow{0};
@@ -1313,9 +1262,8 @@ inline void parallelRows(int rows, int threads, const Body& body) {
 }
 
 // Russian roulette ("Path tracing with Russian roulette"): continue with probability q and divide
-// the throughput by q, so E[beta 1(u<q)/q] = beta: the estimator's mean is unchanged, only paths
-// that would contribute little are cut. For pt and nee (and --roulette throughput) q follows the
-// throughput relative to the path's start (a light path starts at Phi/p, a camera path at 1),
+// the throughput by q, so E[beta 1(u<q)/q] = beta: the mean is unchanged, only paths that would
+// contribute little are cut. For pt and nee q follows the throughput relative to the path's start,
 // capped below 1 so that every path ends; lt, ir and bdpt use the albedo (bdpt's banner: why).
 inline bool russianRoulette(Vec3& beta, float startThroughput, int bounces, const SampleOptions& opt, Rng& rng) {
     if (bounces < opt.rrStart) return true;
@@ -1370,10 +1318,9 @@ inline Vec3 estimateDirect(const Scene& scene, const SurfacePoint& sp, Vec3 wo, 
     return contribution;
 }
 
-// -- (b) nee: "unidirectional + next event". Uses p_{k,0} and p_{k,1}: at every non-specular vertex
-// a light point is connected. Without mis an emitter hit by a BSDF-sampled ray is counted only
-// after the camera or a specular bounce (where no light point could have been connected), so
-// that no path is counted twice ("make sure no path is counted multiple times, either!").
+// -- (b) nee: "unidirectional + next event". Uses p_{k,0} and p_{k,1}: a light point is connected
+// at every non-specular vertex. Without mis an emitter hit by a BSDF sample counts only after the
+// camera or a specular bounce ("make sure no path is counted multiple times, either!").
 inline Vec3 sampleNEE(const Scene& scene, const SampleOptions& opt, const PassData&, int x, int y, Rng& rng, RowOutput&) {
     Ray ray = pixelRay(scene.camera, x, y, rng);
     Vec3 L(0), beta(1);
@@ -1410,11 +1357,10 @@ inline Vec3 sampleNEE(const Scene& scene, const SampleOptions& opt, const PassDa
     return L;
 }
 
-// -- The camera connection shared by light tracing and BDPT's t=1 strategy. For a point x seen
-// by the pinhole, W_j(x->eye) G(x,eye) with the camera-side cosine: W_j cos_cam / d^2, divided by
-// the number of light paths per pass (one per pixel, so the W*H in W_j cancels it; forgetting
-// either is light tracing's classic bug, pbrt-v4 #347 and #456). The scene-side cosine stays
-// with the caller (section 4).
+// -- The camera connection shared by light tracing and BDPT's t=1 strategy. For a point x seen by
+// the pinhole, W_j(x->eye) G(x,eye) with the camera-side cosine, W_j cos_cam / d^2, divided by the
+// number of light paths per pass (one per pixel: the W*H in W_j cancels it; forgetting either is
+// light tracing's classic bug, pbrt-v4 #347 and #456). The scene-side cosine is the caller's.
 struct CameraConnection {
     int pixel = -1;          // -1: behind the camera, outside the image, or occluded
     Vec3 toCamera;           // unit direction from x to the pinhole
@@ -1440,11 +1386,10 @@ inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& 
 }
 
 // -- Subpaths, shared by lt, ir and bdpt (slides: "Generating light paths", "Extension of paths
-// at hit points"). A subpath is a list of vertices, each with the throughput beta that reached it;
-// a connection joins a light-side vertex y to a camera-side vertex x and multiplies the one
-// factor G f f of T(pi) that neither side sampled: both scattering factors (their cosines
-// included, section 4) and 1/d^2; V is a shadow ray. Light tracing is the connection to the
-// pinhole (t = 1) alone, instant radiosity the connection of one camera vertex to stored light
+// at hit points"): a list of vertices, each with the throughput beta that reached it. A connection
+// joins a light-side vertex y to a camera-side vertex x and multiplies the factor G f f of T(pi)
+// that neither side sampled: both scattering factors (cosines included, section 4), 1/d^2 and V.
+// lt is the connection to the pinhole (t = 1) alone, ir that of one camera vertex to stored light
 // vertices, bdpt every connection.
 struct PathVertex {
     double pdfFwd = 0, pdfRev = 0;  // area densities of sampling it from its own side and from the other
@@ -1459,17 +1404,14 @@ struct PathVertex {
     int light = -1;         // the light y_0 was sampled on
 };
 
-// Roulette::Albedo's continuation probability at a surface: its material's largest albedo
-// (SmallVCM's ContinuationProb). It depends on the vertex alone, not on the direction or on the
-// subpath's throughput, so both walks through the vertex have it, and MIS can count it in
-// pdfFwd and pdfRev alike; a throughput-relative q would depend on the other, unknown, subpath.
+// Roulette::Albedo's continuation probability: the material's largest albedo (SmallVCM's). It
+// depends on the vertex alone, so both walks through it have it, and MIS counts it both ways.
 inline float albedoContinuation(const Scene& scene, const SurfacePoint& sp) {
     const Material& m = scene.materials[scene.shapes[sp.shape].material];
     return m.type == Material::Glass ? 1.0f : std::min(1.0f, maxComponent(m.albedo));
 }
 
-// The cosine a density picks up at a vertex hit from direction w: |cos| on surfaces and area
-// lights, 1 at the pinhole and at point lights (no surface).
+// The cosine a density picks up at a vertex hit from direction w: 1 at the pinhole and point lights.
 inline float cosAt(const PathVertex& v, Vec3 w) {
     return v.type == PathVertex::Surface || (v.type == PathVertex::Light && !v.deltaPosition) ? absDot(v.sp.ng, w) : 1;
 }
@@ -1480,10 +1422,8 @@ inline float pdfEmissionDirection(const PathVertex& light, Vec3 w) {
     return std::max(0.0f, dot(light.sp.ng, w)) / kPi;
 }
 
-// A vertex v looking along the unit direction w (away from v): the factor it multiplies into a
-// connection, its cosine included (section 4; 1 at the pinhole, whose W is connectToCamera's),
-// and two solid-angle densities: of sampling w having arrived along v.wo (pdf), and of sampling
-// v.wo having arrived along w (pdfReverse; surfaces only). MIS needs both at each end.
+// A vertex v looking along w: the factor it multiplies into a connection, cosine in (1 at the
+// pinhole), and the densities of sampling w having arrived along v.wo (pdf) and back (pdfReverse).
 inline Vec3 evalVertex(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
     pdfReverse = 0;
     if (v.type == PathVertex::Camera) {
@@ -1497,24 +1437,20 @@ inline Vec3 evalVertex(const Scene& scene, const PathVertex& v, Vec3 w, Transpor
     return evalBsdf(scene, v.sp, v.wo, w, mode, pdf, pdfReverse);
 }
 
-// A solid-angle density as an area density at the vertex `next`, a distance^2 away along w:
-// p_A = p_omega |cos_next| / d^2.
+// A solid-angle density as an area density at `next`, dist2 away along w: p_A = p_omega |cos| / d^2.
 inline double toArea(double pdfOmega, const PathVertex& next, Vec3 w, float dist2) { return pdfOmega * cosAt(next, w) / dist2; }
 
 // The density, up to the delta itself, with which a specular vertex sends its subpath along the
-// unit direction w (away from the vertex): eta_w^2 |w . ns|, eta_w the index on w's side. Mirrors
-// and Snell's law keep the etendue eta^2 |cos| d omega (about the normal the event used), so the
-// delta is one in that measure whichever way a strategy crosses the vertex, and cancels; this
-// factor does not (bdpt's banner, section 7: why it matters).
+// unit direction w: eta_w^2 |w . ns|, eta_w the index on w's side. Mirrors and Snell's law keep
+// the etendue eta^2 |cos| d omega, so the delta cancels between strategies; this factor does not
+// (bdpt's banner says why it matters).
 inline float specularDensity(const Scene& scene, const SurfacePoint& sp, Vec3 w) {
     const Material& m = scene.materials[scene.shapes[sp.shape].material];
     float eta = m.type == Material::Glass && dot(w, sp.ng) < 0 ? m.ior : 1;  // the back side is inside
     return sqr(eta) * absDot(w, sp.ns);
 }
 
-// The two solid-angle densities at a subpath vertex v whose subpath moved on along w: of sampling
-// w (having arrived along v.wo) and of sampling v.wo having arrived along w. A delta event's are
-// specularDensity's, every other vertex's evalVertex's.
+// The two densities at a vertex v whose subpath moved on along w: specularDensity's after a delta event.
 inline void scatteringDensities(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
     if (!v.delta) {
         evalVertex(scene, v, w, mode, pdf, pdfReverse);
@@ -1524,10 +1460,8 @@ inline void scatteringDensities(const Scene& scene, const PathVertex& v, Vec3 w,
     pdfReverse = specularDensity(scene, v.sp, v.wo);
 }
 
-// Adds v, reached from path.back(), to a subpath: v's pdfFwd and the pdfRev of the vertex before
-// path.back(), both evaluated on the vertices' positions (not on the sampled direction, which
-// leaves from an offset origin), so that every strategy's density of one path is computed on the
-// same geometry. Each carries the continuation probability of the vertex it was sampled at.
+// Adds v, reached from path.back(): v's pdfFwd and the pdfRev of the vertex before path.back(), on
+// the vertices' positions (not the offset ray's), each with its sampling vertex's continuation.
 inline void appendVertex(const Scene& scene, std::vector<PathVertex>& path, const PathVertex& vertex, Transport mode) {
     path.push_back(vertex);
     const size_t i = path.size() - 1;
@@ -1629,8 +1563,7 @@ inline Vec3 connectToPinhole(const Scene& scene, const PathVertex& y, int& pixel
     return y.beta * evalVertex(scene, y, c.toCamera, Transport::Importance, pdf, pdfReverse) * c.importance;
 }
 
-// The segment from a light-side vertex y to a camera-side vertex x, both ends evaluated toward
-// each other by evalVertex (the camera side is skipped when y already contributes nothing).
+// The segment from a light-side vertex y to a camera-side vertex x, both ends evaluated by evalVertex.
 struct Connection {
     Vec3 w;           // unit, from y to x
     float dist2 = 0;
@@ -1657,12 +1590,11 @@ inline bool mutuallyVisible(const Scene& scene, const PathVertex& a, const PathV
 }
 
 // -- (c) lt: "next event (light tracing)". Paths start on the lights with p(x,Theta) = Le|cos|/Phi
-// and every vertex is connected to the pinhole (p_{k,k}... the strategies with one camera
-// vertex). Importance flows here, so BSDFs are sampled in Transport::Importance. It renders the
-// floor caustic under the glass sphere (light -> glass -> floor -> eye) that eye paths find only
-// by hitting the light after the refraction (pt, nee: noisy) and never for a point light: no
-// connection can pass through glass, but a light path goes through it by sampling alone.
-// The pixel's stream traces one light path; what reaches the pixel itself comes as splats too.
+// and every vertex is connected to the pinhole (the strategies with one camera vertex), BSDFs
+// sampled in Transport::Importance. It renders the caustic under the glass sphere, which eye paths
+// find only by hitting the light after the refraction (noisy) and never for a point light: no
+// connection passes through glass, a light path does by sampling. Each pixel's stream traces one
+// light path; what reaches the pixel itself comes as splats too.
 inline Vec3 sampleLT(const Scene& scene, const SampleOptions& opt, const PassData&, int, int, Rng& rng, RowOutput& out) {
     thread_local std::vector<PathVertex> light;
     lightSubpath(scene, opt, rng, light);
@@ -1679,9 +1611,8 @@ inline Vec3 sampleLT(const Scene& scene, const SampleOptions& opt, const PassDat
 // path gathers from all of them:
 //   sum_VPL  beta_y / N  f_y(y->x) f_x(y->x->eye) G(x,y) V(x,y)
 // Unbiased for the paths it can make, but G = cos cos / d^2 is unbounded where x and y come close
-// (corners): the bright splotches of panel (d). --clamp C replaces G by min(G, C): panel (e),
-// smooth but darker, and the loss does not shrink with more passes (bias; the same 1/d^2 was
-// pbrt-v3 #73).
+// (corners): panel (d)'s splotches. --clamp C uses min(G, C): panel (e), smooth but darker, and the
+// loss does not shrink with more passes (bias; the same 1/d^2 was pbrt-v3 #73).
 struct Vpl {
     PathVertex y;       // a light-subpath vertex, its beta divided by the number of VPL paths
     int bounces = 0;    // scattering vertices before y on its light path
@@ -1796,8 +1727,7 @@ inline double misPower(Heuristic heuristic, double r) {  // what each r_i adds t
     return heuristic == Heuristic::Power ? r * r : heuristic == Heuristic::Uniform ? 1.0 : r;
 }
 
-// pdfRev/pdfFwd of a vertex changing sides. pdfFwd is > 0 for every vertex a subpath sampled; a 0
-// (a cosine of exactly 0) makes the other strategies' densities 0 relative to it, not infinite.
+// pdfRev/pdfFwd of a vertex changing sides; a pdfFwd of 0 (a cosine of exactly 0) gives 0, not infinity.
 inline double densityRatio(double pdfRev, double pdfFwd) { return pdfFwd > 0 ? pdfRev / pdfFwd : 0; }
 
 // Where the two subpaths meet, the reverse densities of the (up to) four vertices next to the
@@ -1824,11 +1754,10 @@ inline Junction connectionJunction(const Scene& scene, Subpath light, int s, Sub
     return j;
 }
 
-// The strategies able to make one path, each added as r_i = p_i / p_ref (p_ref: the density of
-// the strategy being weighted), and that strategy's weight w = 1 / sum_i misPower(r_i), itself
-// included (r = 1); for the max heuristic 1 / #ties if no r_i is larger. Two strategies of equal
-// density (common in symmetric scenes) computed in different orders can each see the other as
-// larger by a rounding error: within 1e-4 they count as equal and share the path.
+// The strategies able to make one path, each added as r_i = p_i / p_ref (p_ref the weighted
+// strategy's density, r = 1 itself), and its weight w = 1 / sum_i misPower(r_i); for the max
+// heuristic 1 / #ties if no r_i is larger. Equal densities computed in different orders can each
+// look larger by a rounding error: within 1e-4 they count as equal and share the path.
 struct MisSum {
     Heuristic heuristic;
     double sum = 0;
@@ -1876,10 +1805,8 @@ inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta
     }
 }
 
-// w_{s,t} for the path that strategy (s,t) made from light[0..s-1] and camera[0..t-1], joined by
-// the connection c (unused for s = 0); vcm passes its mergeEta, bdpt 0.
-// The light seen directly (k = 1) is left to s = 0, as in pbrt: (1,1) gets weight 0, so a point
-// light stays invisible to the camera in bdpt as in pt and nee (lt shows it as one bright pixel).
+// w_{s,t} of the path (s,t) made of light[0..s-1] and camera[0..t-1] joined by c (vcm passes its
+// mergeEta). The light seen directly is left to s = 0, as in pbrt: a point light stays invisible.
 inline float misWeight(const Scene& scene, Subpath light, int s, Subpath camera, int t, Heuristic heuristic, const Connection& c,
                        double mergeEta) {
     if (s + t == 2) return s == 0 ? 1.0f : 0.0f;
@@ -1891,12 +1818,9 @@ inline float misWeight(const Scene& scene, Subpath light, int s, Subpath camera,
 }
 
 // The unweighted contribution of strategy (s,t) and, for s > 0, its connection c; for t = 1 also
-// the pixel it lands on. light[0] serves s = 1 as well: y_0 is a point sampled on a light by
-// power and area, exactly next event's light sample, so s = 1 is next-event estimation. pbrt and
-// SmallVCM draw a fresh light point for every camera vertex: unbiased too, a few shadow rays'
-// worth of work more, and hardly less error (notes, Appendix A), so one y_0 serves them all.
-// Inlined always into both callers (connectSubpaths, mmlt's strategySample): it runs for every
-// (s,t) of every sample, and with two callers GCC stops inlining it.
+// the pixel it lands on. light[0] serves s = 1 too: y_0 is next event's light sample (pbrt and
+// SmallVCM draw a fresh one per camera vertex: a few shadow rays more, hardly less error; notes,
+// Appendix A). Inlined always: it runs for every (s,t) of every sample, from two callers.
 [[gnu::always_inline]]
 inline Vec3 connectStrategy(const Scene& scene, Subpath light, int s, Subpath camera, int t, Connection& c, int& pixel) {
     const PathVertex& pt = camera[t - 1];
@@ -1913,16 +1837,12 @@ inline Vec3 connectStrategy(const Scene& scene, Subpath light, int s, Subpath ca
     return isBlack(contribution) || !mutuallyVisible(scene, qs, pt) ? Vec3(0) : contribution;
 }
 
-// The light subpath of pixel `pixel` in pass `pass`: a stream of its own, apart from the pixel's
-// camera stream, so that vcm, which traces all light subpaths of a pass first, makes the same
-// ones as bdpt (--radius 0 gives bdpt's image bit for bit).
+// The light subpath of a pixel and pass, a stream of its own: vcm makes the same ones as bdpt.
 inline Rng lightPathRng(const SampleOptions& opt, int pixel, int pass) {
     return sampleRng(opt, 0x3c6ef372fe94f82bULL, uint64_t(pixel), uint64_t(pass));
 }
 
-// Every connection (s,t) of one camera subpath with one light subpath, MIS-weighted: bdpt's
-// estimate, and the connection half of vcm's (whose merges, mergeEta > 0, share the weights).
-// Each strategy's own contribution is recorded up to path length opt.strategyMaxLength.
+// Every connection (s,t) of a camera and a light subpath, MIS-weighted; each recorded up to strategyMaxLength.
 inline Vec3 connectSubpaths(const Scene& scene, const SampleOptions& opt, Subpath light, const std::vector<PathVertex>& camera,
                             int ownPixel, double mergeEta, RowOutput& out) {
     Vec3 L(0);
@@ -1944,8 +1864,7 @@ inline Vec3 connectSubpaths(const Scene& scene, const SampleOptions& opt, Subpat
     return L;
 }
 
-// One bdpt sample: a camera subpath through (filmX, filmY) in pixel `ownPixel`, a light subpath, and
-// all their connections (pssmlt, section 8 (h), evaluates its states with it).
+// One bdpt sample: a camera subpath through (filmX, filmY), a light subpath, all their connections.
 inline Vec3 bdptSample(const Scene& scene, const SampleOptions& opt, float filmX, float filmY, int ownPixel, Rng& cameraRng,
                        Rng& lightRng, RowOutput& out) {
     thread_local std::vector<PathVertex> camera, light;
@@ -1968,33 +1887,28 @@ inline Vec3 sampleBDPT(const Scene& scene, const SampleOptions& opt, const PassD
 
 // -- (g) vcm: "Vertex Connection and Merging (VCM, later)" (Georgiev, Krivanek, Davidovic and
 // Slusallek 2012; Hachisuka, Pantaleoni and Jensen 2012). Panel (f)'s limit: a connection needs
-// two non-specular vertices side by side, so a path L S D S E (a caustic on the floor seen in a
-// mirror, or a point light in a glass ball seen through glass) has no strategy at all; only s = 0
-// remains when the light has area, and nothing for a point light. Merging adds one: a light
-// subpath that lands at y within radius r of a camera vertex x counts as if it had reached x,
+// two non-specular vertices side by side, so a path L S D S E (a caustic seen in a mirror, a point
+// light in a glass ball seen through glass) has no strategy but s = 0, and none for a point light.
+// Merging adds one: a light subpath that lands at y within radius r of a camera vertex x counts as
+// if it had reached x,
 //     C_merge = beta_camera(x) f(x) beta_light(y) / (pi r^2 N),
-// a density estimate over the N = width x height light subpaths of the pass (a disk kernel,
-// photon mapping's). Its density, relative to the connection strategy that samples x from the
-// camera, is that of landing on the disk:
+// a density estimate (a disk kernel, photon mapping's) over the pass's N = width x height light
+// subpaths. Relative to the connection that samples x from the camera, its density is that of
+// landing on the disk:
 //     p_merge(x) = p_{s,t} * pi r^2 N * p_light(x)      (p_light(x): the light side's pdfFwd of x)
-// so in the ratio walk of misWeight a merge is one more term per non-specular vertex, and
-// mergeEta = pi r^2 N the only new number. Every heuristic applies as to connections (the max
-// heuristic, uniform: unchanged definitions over the larger set of strategies).
-// The kernel makes the merge biased: it blurs over the disk, so a pass's estimate is too smooth
-// by about r. Each pass shrinks the radius, r(n) = r_0 n^((alpha-1)/2) in pass n (the closed form
-// of Knaus and Zwicker 2011's radius recursion for progressive photon mapping, as SmallVCM has it), slowly enough (alpha in (0,1)) that the variance, which grows like
-// 1/r^2, is still averaged away: bias and variance both vanish as passes go on (consistent), and
-// the error falls more slowly than -1/2 in log(error) against log(time).
-// Per pass: trace every pixel's light subpath (the same as bdpt's), keep them all, put their
-// mergeable vertices in a hash grid; then every camera subpath makes bdpt's connections with its
-// own pixel's light subpath, and at each of its non-specular vertices merges with the vertices
-// in the grid within r.
+// so a merge is one more term per non-specular vertex in misWeight's walk, mergeEta = pi r^2 N the
+// only new number, and every heuristic applies as to connections. The kernel blurs over the disk,
+// a bias of about r; each pass shrinks the radius, r(n) = r_0 n^((alpha-1)/2) (Knaus and Zwicker
+// 2011, as SmallVCM), slowly enough (alpha in (0,1)) that the variance, growing like 1/r^2, is
+// still averaged away: bias and variance both vanish (consistent), the error falling more slowly
+// than N^-1/2. Per pass: trace every pixel's light subpath (bdpt's), keep them, put their
+// mergeable vertices in a hash grid; every camera subpath makes bdpt's connections with its own
+// pixel's light subpath and merges at each non-specular vertex with the grid's within r.
 
 // A uniform grid of cells of side 2r, hashed into as many buckets as points: a query sphere of
-// radius r then overlaps at most 2 cells per axis, 8 in all. Two cells may share a bucket; a
-// bucket is visited once. The caller keeps its records (each with its point p) in bucket order,
-// so that a query reads each bucket's records one after another: the queries are what merging
-// costs, and that cost is memory, not math.
+// radius r overlaps at most 8 cells (a bucket shared by two is visited once). The caller keeps its
+// records in bucket order, so that a query reads a bucket's records one after another: merging's
+// cost is the queries', and that is memory, not math.
 struct HashGrid {
     float radius = 0, cellsPerUnit = 0;  // cells of side 2 r
     uint32_t bucketMask = 0;             // a power of two of buckets, at least one per point, minus 1
@@ -2006,8 +1920,7 @@ inline uint32_t gridBucket(const HashGrid& g, int64_t x, int64_t y, int64_t z) {
     return (uint32_t(x) * 73856093u ^ uint32_t(y) * 19349663u ^ uint32_t(z) * 83492791u) & g.bucketMask;
 }
 
-// Builds the grid of `points` and returns the bucket order: the grid's record e is the one of
-// points[order[e]].
+// Builds the grid of `points`; returns the bucket order (the grid's record e is points[order[e]]).
 inline std::vector<uint32_t> buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius) {
     g.radius = radius;
     g.cellsPerUnit = radius > 0 ? 0.5f / radius : 0;
@@ -2026,14 +1939,12 @@ inline std::vector<uint32_t> buildHashGrid(HashGrid& g, const std::vector<Vec3>&
     return order;
 }
 
-// Calls visit(e) for every record e (records: in bucket order, each with its point .p) within the
-// grid's radius of p, in a fixed order.
+// Calls visit(e), in a fixed order, for every record e (in bucket order, with its point .p) within r of p.
 template <class Record, class Visit>
 inline void forEachNeighbour(const HashGrid& g, const std::vector<Record>& records, Vec3 p, Visit&& visit) {
     if (records.empty()) return;
     const float r2 = g.radius * g.radius;
-    // The cells of p - r and p + r on each axis: the same or the next one (two apart only if
-    // rounding says so), computed as the build computes a point's.
+    // The cells of p - r and p + r on each axis (at most 3 apart by rounding), as the build computes them.
     int64_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) lo[a] = gridCell(g, p[a] - g.radius), hi[a] = gridCell(g, p[a] + g.radius);
     uint32_t buckets[27], begin[27], end[27];  // 8 unless rounding puts p - r and p + r three cells apart
@@ -2046,8 +1957,7 @@ inline void forEachNeighbour(const HashGrid& g, const std::vector<Record>& recor
                 buckets[count++] = b;
                 __builtin_prefetch(&g.bucketStart[b]);
             }
-    // Each bucket is two cache misses (its start, its first record): asked for all at once, they
-    // overlap, and the query costs about two misses instead of sixteen.
+    // Each bucket is two cache misses: asked for all at once, they overlap (two misses, not sixteen).
     for (int i = 0; i < count; ++i) {
         begin[i] = g.bucketStart[buckets[i]];
         end[i] = g.bucketStart[buckets[i] + 1];
@@ -2060,10 +1970,8 @@ inline void forEachNeighbour(const HashGrid& g, const std::vector<Record>& recor
         }
 }
 
-// The pass's light subpaths: pixel p's is paths[p], its vertices stored row by row (the
-// connections need them whole). A merge reads its light vertex and the ones before it there, as
-// a connection reads its own pixel's: the grid adds only where each mergeable vertex lies and
-// which it is (24 bytes), not a second copy of what the vertices already hold.
+// The pass's light subpaths: pixel p's is paths[p], its vertices stored row by row; the grid adds
+// only where each mergeable vertex lies and which it is (24 bytes), not a copy of the vertices.
 struct VcmPass {
     float radius = 0;
     double mergeEta = 0;                  // pi r^2 N_light; 0: no merging (vcm is bdpt)
@@ -2078,12 +1986,10 @@ struct VcmPass {
     HashGrid grid;
 };
 
-// r_0 when --radius is not given: one pixel's footprint where the central camera ray meets the
-// first non-specular surface (straight through glass and mirrors: a glass ball around the
-// camera is not the scene), d * 2 tan(fov/2) / height. A merge then blurs by about a pixel in
-// the first pass, less later: a smaller r_0 is noisier, a larger one blurs more and finds more
-// candidates per query (Appendix A measures the trade). One footprint is also what SmallVCM's
-// default (0.003 scene radii at 512x512) comes to on these scenes.
+// r_0 when --radius is not given: one pixel's footprint, d * 2 tan(fov/2) / height, where the
+// central camera ray meets the first non-specular surface (straight through glass and mirrors). A
+// merge then blurs by about a pixel in the first pass, less later; a smaller r_0 is noisier, a
+// larger one blurs more and costs more per query (Appendix A). It is also about SmallVCM's default.
 inline float defaultMergeRadius(const Scene& scene) {
     const Camera& cam = scene.camera;
     Ray ray = cameraRay(cam, 0.5f * cam.width, 0.5f * cam.height);
@@ -2108,8 +2014,7 @@ inline void traceVcmLightPass(const Scene& scene, const SampleOptions& opt, int 
     const int W = scene.camera.width, H = scene.camera.height;
     vp.radius = mergeRadius(scene, opt, pass);
     vp.mergeEta = double(kPi) * vp.radius * vp.radius * double(W) * H;
-    // A row is kept from pass to pass and refilled at its exact length (assign reallocates only to
-    // grow, and then to the size asked): growing by doubling would leave a third of it unused.
+    // Rows are kept from pass to pass, refilled at their exact length (doubling would waste a third).
     vp.rowVertices.resize(H);
     std::vector<std::vector<int>> rowLengths(H);
     parallelRows(H, threads, [&](int y) {
@@ -2147,13 +2052,11 @@ inline void traceVcmLightPass(const Scene& scene, const SampleOptions& opt, int 
 
 // w of the merge of camera[t-1] with y = light[j]: the path is light[0..j-1] + camera[t-1..0] as
 // for the connection (j, t), y's density of reaching the merged vertex counted once. pdf and
-// pdfReverse: camera[t-1]'s BSDF densities of sampling y.wo from camera[t-1].wo and back.
-// The max heuristic evaluates the merged path on one geometry, the connection (j, t)'s, with the
-// camera vertex x where y was: in the furnace many strategies have exactly equal densities, and
-// y's densities mixed with x's would make ties flip from one photon to the next (a visible bias;
-// notes, page 15); the other heuristics, continuous in the densities, change by O(r) only.
-// That costs one more BSDF evaluation per merge, at light[j-1]. After a delta event at light[j-1]
-// only y lies on the sampled direction, and y's geometry is kept.
+// pdfReverse: camera[t-1]'s BSDF densities of sampling y.wo from camera[t-1].wo and back. The max
+// heuristic takes one geometry, the connection (j, t)'s (one more BSDF evaluation, at light[j-1]):
+// in the furnace many strategies have exactly equal densities, and y's mixed with x's would flip
+// ties from one photon to the next (a visible bias; notes, page 15); the other heuristics change
+// by O(r) only. After a delta event at light[j-1] only y lies on the sampled direction.
 inline float mergeWeight(const Scene& scene, Subpath light, int j, Subpath camera, int t, Heuristic heuristic, double mergeEta, float pdf,
                          float pdfReverse) {
     PROFILE_PART(Mis);
@@ -2179,11 +2082,8 @@ inline float mergeWeight(const Scene& scene, Subpath light, int j, Subpath camer
     return m.weight();
 }
 
-// Every merge at the camera vertices z_1..z_{t-1}: the vertices of all light subpaths of the
-// pass within r (their own pixel's as well: a merge is not a connection). The merges of a query
-// are found first and their light vertices asked for at once, so that their cache misses
-// overlap: each then reads its vertex y and the ones before it (the walk) from memory already
-// on its way.
+// Every merge at the camera vertices z_1..z_{t-1} with all the pass's light vertices within r (its
+// own pixel's too); a query's merges are found first and fetched at once (their misses overlap).
 inline Vec3 mergeCameraVertices(const Scene& scene, const SampleOptions& opt, const VcmPass& vp, const std::vector<PathVertex>& camera,
                                 int ownPixel, RowOutput& out) {
     thread_local std::vector<const VcmPass::Stored*> found;
@@ -2295,8 +2195,7 @@ inline Vec3 strategySample(const Scene& scene, const SampleOptions& opt, int k, 
     return C * misWeight(scene, light, s, camera, t, opt.heuristic, c, 0) * float(k + 1);
 }
 
-// A generator that replays a state's stream from its start and draws the numbers it never drew
-// from `fresh` (which the state then keeps): Kelemen's "replay u, draw the rest afresh".
+// A generator replaying a state's stream, the numbers it never drew from `fresh`: "replay u, draw the rest".
 inline Rng replaying(PrimaryStream& stream, Rng& fresh) {
     Rng rng;
     rng.replay = &stream;
@@ -2354,8 +2253,7 @@ inline float smallStep(float v, float step) {
     x -= std::floor(x);
     return x < 1 ? x : 0;
 }
-// Box-Muller: two independent standard normals from two uniforms (a small step needs one per
-// number; drawing them in pairs halves the cost of the sines, cosines and logarithms).
+// Box-Muller: two independent standard normals from two uniforms (a small step needs one per number).
 inline void standardNormals(Rng& rng, float& a, float& b) {
     float r = std::sqrt(-2 * std::log(1 - rng.uniform())), phi = 2 * kPi * rng.uniform();
     a = r * std::cos(phi);
@@ -2383,9 +2281,7 @@ inline bool proposeStep(const SampleOptions& opt, PrimarySampleChain& chain) {
     return false;
 }
 
-// The end of every Metropolis step (pssmlt, mmlt, mlt): the expected values h/f of the proposal
-// (weight a) and of the current state (1 - a, added up until the chain leaves it) are splatted
-// through splat(state, weight / f), and the proposal is accepted with probability a.
+// The end of every Metropolis step: the proposal's h/f splatted with weight a, the current's with 1 - a.
 template <class Chain, class SplatState>
 inline void splatAndAccept(Chain& chain, double a, const SplatState& splat) {
     if (a > 0) splat(chain.proposal, a / chain.proposal.f);
@@ -2399,9 +2295,7 @@ inline void splatAndAccept(Chain& chain, double a, const SplatState& splat) {
     }
 }
 
-// One Metropolis step of a chain whose current state has f > 0: propose, evaluate, splat the
-// expected values through splat(state, weight), accept with probability a. `accept` is
-// symmetricAcceptance (a test passes others, to see them fail).
+// One step of pssmlt's or mmlt's chain: propose, evaluate, splat, accept (a test passes other rules).
 template <class Evaluate, class SplatState>
 inline void metropolisStep(const SampleOptions& opt, PrimarySampleChain& chain, const Evaluate& evaluate, const SplatState& splat,
                            float (*accept)(float, float) = symmetricAcceptance) {
@@ -2413,18 +2307,16 @@ inline void metropolisStep(const SampleOptions& opt, PrimarySampleChain& chain, 
 
 // -- (h) mlt: Veach's Metropolis light transport (Veach and Guibas 1997; Veach 1997, ch. 11), the
 // slide's "random variation and mutations of bidirectional paths". The chain's state is a path
-// x = x_0..x_k itself (x_0 on a light, x_k the pinhole), and a mutation changes a few of its
-// vertices and keeps the rest: on a scene lit through a narrow gap, a path that has found the gap
-// keeps its crossing while the chain varies the rest, where pssmlt's large and small steps re-roll
-// the whole path and must find the gap again (notes, page 17).
-// The target is f(x), the path's measurement contribution (its luminance, in the units of a
-// pixel's share, section 9): with bdpt's pieces, f(x) = C_{s,t}(x) p_{s,t}(x) for any strategy
-// (s,t) able to make x, C its unweighted contribution, p_{s,t} the product of its area densities
-// (mirrors and glass in the measure of bdpt's banner, so that the deltas of f and p cancel).
+// x = x_0..x_k (x_0 on a light, x_k the pinhole), and a mutation changes a few of its vertices and
+// keeps the rest: a path that has found a narrow gap keeps its crossing while the chain varies the
+// rest, where pssmlt's steps re-roll the whole path and must find the gap again (notes, page 17).
+// The target is f(x), the path's measurement contribution (its luminance): with bdpt's pieces,
+// f(x) = C_{s,t}(x) p_{s,t}(x) for any strategy (s,t) able to make x, C its unweighted contribution,
+// p_{s,t} the product of its area densities (mirrors and glass in bdpt's measure: deltas cancel).
 // A proposal y, made from x with the tentative transition density T(y|x), is accepted with
 //     a(y|x) = min(1, f(y) T(x|y) / (f(x) T(y|x)))
-// which keeps f/b the chain's stationary density (detailed balance, f(x) T(y|x) a(y|x) =
-// f(y) T(x|y) a(x|y)). Three mutations, each chosen uniformly among those that apply to x:
+// (detailed balance: f/b stays the chain's stationary density). Three mutations, each chosen
+// uniformly among those that apply to x:
 // - the bidirectional mutation: delete the vertices x_a..x_{b-1} (kd = b-a+1 edges; kd = 1 deletes
 //   none), add n new ones (ka = n+1 edges): s by a walk from x_{a-1} (a new light point when
 //   a = 0), n-s by a walk from x_b, joined by one connection, with bdpt's walkers. y could have
@@ -2441,20 +2333,16 @@ inline void metropolisStep(const SampleOptions& opt, PrimarySampleChain& chain, 
 //   an angle theta (density 1/theta, scaled so that the move on the film is a few pixels), follow
 //   the same specular lobes, and connect the new x_{k-1} to the pinhole. Its range of theta
 //   depends on the path's lengths, so its density does not cancel and is part of T.
-// Walks have no roulette (their lengths are chosen), so the densities carry none; glass adds the
-// probability of the lobe a walk took (F or 1-F) to T and to f alike, and a perturbation, which
-// keeps the lobes, has none. Products of densities span hundreds of decades on a path of
-// millimetre-sized scenes (1e-6 a vertex): f and T are in double, and only their ratios are used.
-// Start (Veach's "start-up bias" answer): a bootstrap of --bootstrap bdpt samples; every strategy's
-// MIS-weighted luminance w_{s,t} f/p_{s,t} is a candidate, their mean is b = integral f, and a chain
-// starts from a candidate chosen in proportion to it: sum_s w_s f/p_s p_s = f, so the start is
-// distributed as f/b already. Paths of one and two segments (direct light) are rendered by a
-// bdpt sample per pixel and left out of f, as Veach does (--chain-short-paths keeps them).
+// Walks have no roulette (their lengths are chosen); glass adds the probability of the lobe a walk
+// took (F or 1-F) to T and to f alike, and a perturbation, which keeps the lobes, has none. f and
+// T are in double (products of densities span hundreds of decades); only their ratios are used.
+// Start (Veach's answer to start-up bias): a bootstrap of bdpt samples, every strategy's MIS-
+// weighted luminance w_{s,t} f/p_{s,t} a candidate; their mean is b = integral f, and a chain starts
+// from one chosen in proportion to it (sum_s w_s f/p_s p_s = f: distributed as f/b already).
+// Paths of one and two segments are a bdpt sample's, as Veach has them (--chain-short-paths).
 
-// A path of the chain and what its mutations read: pL[i], pE[i] are the area densities of x_i
-// sampled from x_{i-1} (the light side; pL[0] the light point's) and from x_{i+1} (the camera
-// side; 0 at a point light, which nothing hits); lobe[i] is the probability of the lobe the path
-// took at a glass vertex (1 elsewhere).
+// A path of the chain: pL[i], pE[i] the area densities of x_i sampled from x_{i-1} (pL[0] the light
+// point's) and from x_{i+1} (0 at a point light); lobe[i] its glass lobe's probability (else 1).
 struct MutatedPath {
     std::vector<PathVertex> x;
     std::vector<double> pL, pE, lobe;
@@ -2475,9 +2363,8 @@ inline PathVertex lightVertexAt(const Scene& scene, const PathVertex& v) {
     return lightVertex(lp);
 }
 
-// What a walk multiplies into its throughput when it leaves vertex v along w (f |cos| / p for the
-// density appendVertex then records; the lobe's weight at a mirror or glass, whose lobe w says),
-// and v's delta flag, as sampleBsdf would have set it.
+// What a walk multiplies into its throughput leaving vertex v along w (f |cos| / p, or the weight
+// of the lobe w takes at a mirror or glass), and v's delta flag, as sampleBsdf would set them.
 inline Vec3 scatteringWeight(const Scene& scene, PathVertex& v, Vec3 w, Transport mode) {
     if (v.type == PathVertex::Camera) return Vec3(1);
     if (v.type == PathVertex::Light) {
@@ -2492,8 +2379,7 @@ inline Vec3 scatteringWeight(const Scene& scene, PathVertex& v, Vec3 w, Transpor
     return pdf > 0 ? f / pdf : Vec3(0);
 }
 
-// The subpath of the first n vertices of x from its light end (Importance) or from the pinhole
-// (Radiance), with the throughputs and densities the walkers would have given them.
+// The first n vertices of x from its light end or its pinhole, with the walkers' throughputs and densities.
 inline void subpathThrough(const Scene& scene, const std::vector<PathVertex>& x, int n, Transport mode, std::vector<PathVertex>& out) {
     const int k = int(x.size()) - 1;
     out.clear();
@@ -2510,9 +2396,7 @@ inline void subpathThrough(const Scene& scene, const std::vector<PathVertex>& x,
     }
 }
 
-// Extends a subpath by exactly n vertices sampled from its last one (a new film point from the
-// pinhole, a direction from a light point, a BSDF sample from a surface); false if the walk ends
-// sooner.
+// Extends a subpath by exactly n vertices sampled from its last one; false if the walk ends sooner.
 inline bool extendSubpath(const Scene& scene, const SampleOptions& walk, std::vector<PathVertex>& path, int n, Transport mode, Rng& rng) {
     if (n == 0) return true;
     PathVertex& v = path.back();
@@ -2551,9 +2435,8 @@ inline int pixelOf(const Camera& cam, Vec3 p) {
     return std::min(int(fy), cam.height - 1) * cam.width + std::min(int(fx), cam.width - 1);
 }
 
-// The path strategy (s,t) makes of light[0..s-1] and camera[0..t-1], with f, its pixel and the
-// densities of its vertices seen from both sides (the ones misWalk reads); false if it carries
-// nothing or leaves the image.
+// The path strategy (s,t) makes of light[0..s-1] and camera[0..t-1], with f, its pixel and its
+// vertices' densities from both sides (misWalk's); false if it carries nothing or leaves the image.
 inline bool joinPath(const Scene& scene, Subpath light, int s, Subpath camera, int t, MutatedPath& y) {
     Connection c;
     int pixel = -1;
@@ -2595,9 +2478,8 @@ inline bool joinPath(const Scene& scene, Subpath light, int s, Subpath camera, i
     return y.pixel >= 0 && y.f > 0 && std::isfinite(y.f);
 }
 
-// -- The bidirectional mutation. Veach's probabilities (1997, p. 347): delete kd edges with
-// probability 1/4, 1/2, then 2^-kd; add ka = kd with 1/2, kd +- 1 with 0.15 each, kd +- j with
-// 0.2 * 2^-j; each restricted to what the path allows and renormalised.
+// -- The bidirectional mutation. Veach's probabilities (1997, p. 347): delete kd edges with 1/4,
+// 1/2, then 2^-kd; add ka = kd with 1/2, kd +- 1 with 0.15, kd +- j with 0.2 * 2^-j; renormalised.
 inline double deletionWeight(int kd) { return kd == 1 ? 0.25 : kd == 2 ? 0.5 : std::ldexp(1.0, -kd); }
 inline double additionWeight(int ka, int kd) {
     int j = std::abs(ka - kd);
@@ -2627,9 +2509,8 @@ inline double additionProbability(int ka, int kd, int k, LengthRange r) {
     return additionAllowed(ka, kd, k, r) && total > 0 ? additionWeight(ka, kd) / total : 0;
 }
 
-// Where the deletion may start: x_{a-1} and x_b (b = a+kd-1) are kept and must not be mirrors or
-// glass (a walk or a connection starts there); a = 0 deletes the light point, which then needs
-// a new one (ka > 1) and cannot take an insertion before it (kd > 1).
+// Where the deletion may start: the kept x_{a-1} and x_b (b = a+kd-1) must not be mirrors or glass
+// (walks and connections start there); a = 0 deletes the light point, which needs a new one.
 inline bool deletionAllowed(const Scene& scene, const MutatedPath& x, int a, int kd, int ka) {
     int b = a + kd - 1;
     if (a < 0 || b > x.k()) return false;
@@ -2642,8 +2523,7 @@ inline int deletionPlaces(const Scene& scene, const MutatedPath& x, int kd, int 
     return n;
 }
 
-// T's density of the n vertices x_a..x_{a+n-1} of y over the splits that could have made them,
-// their glass lobes included: sum_s prod_{i<a+s} pL[i] prod_{i>=a+s} pE[i].
+// T's density of y's n new vertices x_a.. over every split, lobes in: sum_s prod_{i<a+s} pL[i] prod pE[i].
 inline double splitDensitySum(const Scene& scene, const MutatedPath& y, int a, int n) {
     double sum = 0;
     for (int s = 0; s <= n; ++s) {
@@ -2657,9 +2537,8 @@ inline double splitDensitySum(const Scene& scene, const MutatedPath& y, int a, i
     return sum;
 }
 
-// T(y|x) of the bidirectional mutation that replaced x_a..x_{a+kd-2} by y_a..y_{a+ka-2}. A point
-// light is one point: deleting it (a = 0) and drawing the same light again makes the same y as
-// keeping it (a = 1), so T sums both ways.
+// T(y|x) of the bidirectional mutation that replaced x_a..x_{a+kd-2} by y_a..y_{a+ka-2}; a point
+// light deleted (a = 0) and drawn again makes the same y as kept (a = 1): T sums both ways.
 inline double deletionDensity(const Scene& scene, const MutatedPath& x, const MutatedPath& y, int a, int kd, int ka, LengthRange r) {
     int places = deletionPlaces(scene, x, kd, ka);
     if (places == 0) return 0;
@@ -2685,8 +2564,7 @@ inline int pickIndex(int first, int last, Rng& rng, const Pick& weight) {  // in
     return -1;
 }
 
-// A proposal y and its ratio f(y) T(x|y) / (f(x) T(y|x)); 0: no proposal (a walk ended, the
-// connection is blocked, ...), which the chain counts as a rejection.
+// A proposal y and its ratio f(y) T(x|y) / (f(x) T(y|x)); 0: no proposal, counted as a rejection.
 inline double bidirectionalMutation(const Scene& scene, const SampleOptions& walk, LengthRange r, const MutatedPath& x, Rng& rng, MutatedPath& y) {
     thread_local std::vector<PathVertex> light, camera;
     const int k = x.k();
@@ -2714,9 +2592,8 @@ inline double bidirectionalMutation(const Scene& scene, const SampleOptions& wal
     return forward > 0 ? y.f * backward / (x.f * forward) : 0;
 }
 
-// -- The perturbations carry a path through the same mirror and glass lobes it had: from vertex
-// `from` of x (already replaced by `start`, the last of path), the walk along `ray` must meet a
-// specular surface wherever x had one, taking the same lobe, and a non-specular one at `to`.
+// -- The perturbations keep a path's mirror and glass lobes: from x's vertex `from`, the walk along
+// `ray` meets a specular surface wherever x had one, takes the same lobe, and a diffuse one at `to`.
 inline bool followLobes(const Scene& scene, const MutatedPath& x, int from, int to, Ray ray, Transport mode, std::vector<PathVertex>& path) {
     int step = to > from ? 1 : -1;
     Vec3 beta = path.back().beta * scatteringWeight(scene, path.back(), ray.d, mode);
@@ -2743,15 +2620,13 @@ inline bool followLobes(const Scene& scene, const MutatedPath& x, int from, int 
     }
 }
 
-// Lens perturbation's reach, in pixels (Veach 1997, p. 354): from 0.1 to the radius of a disc of
-// 5% of the image.
+// Lens perturbation's reach, in pixels (Veach 1997, p. 354): 0.1 to the radius of 5% of the image.
 inline void lensRadii(const Camera& cam, double& r1, double& r2) {
     r1 = 0.1;
     r2 = std::max(1.0, std::sqrt(0.05 * cam.width * cam.height / kPi));
 }
 
-// The lens perturbation applies to paths ending ... D S* E: c, the first non-specular vertex seen
-// from the camera, and the one before it, connectable; -1 if it does not apply.
+// The lens perturbation applies to paths ending ... D S* E: c, the first vertex seen that is not specular.
 inline int lensVertex(const Scene& scene, const MutatedPath& x) {
     int c = x.k() - 1;
     while (c > 0 && !connectable(scene, x.x[c])) --c;
@@ -2778,8 +2653,7 @@ inline double lensPerturbation(const Scene& scene, const MutatedPath& x, Rng& rn
     return pNew > 0 ? (y.f / pNew) / (x.f / pOld) : 0;
 }
 
-// The caustic perturbation applies to paths ending (L|D) S* D E: x_{k-1} connectable, and l the
-// first connectable vertex before it, through mirrors and glass; -1 if it does not apply.
+// The caustic perturbation applies to paths ending (L|D) S* D E: l, where the chain S* starts.
 inline int causticVertex(const Scene& scene, const MutatedPath& x) {
     int k = x.k();
     if (k < 2 || !connectable(scene, x.x[k - 1])) return -1;
@@ -2788,9 +2662,8 @@ inline int causticVertex(const Scene& scene, const MutatedPath& x) {
     return l;
 }
 
-// Its angles: the lens radii in radians per pixel, scaled by |x_{k-1} x_k| over the length of the
-// caustic's chain x_l..x_{k-1}, so that the film moves by about as many pixels; the density of
-// the angle theta between the old and the new direction, in solid angle.
+// Its angles: the lens radii in radians per pixel, scaled by |x_{k-1} x_k| over the caustic chain's
+// length, so that the film moves about as many pixels; and the angle's density in solid angle.
 inline bool causticAngleRange(const Scene& scene, const MutatedPath& x, int l, double& t1, double& t2) {
     const Camera& cam = scene.camera;
     double chain = 0;
@@ -2808,8 +2681,7 @@ inline double causticDensity(const Scene& scene, const MutatedPath& x, int l, do
     return 1 / (2 * kPi * std::log(t2 / t1) * theta * std::sin(theta));
 }
 
-// T(y|x) of a caustic perturbation: the angle's solid-angle density at x_l, made an area density
-// at y_{l+1}, then the chain's specular densities.
+// T(y|x) of a caustic perturbation: the angle's density as an area density at y_{l+1}, then the chain's.
 inline double causticTransition(const Scene& scene, const MutatedPath& from, const MutatedPath& to, int l) {
     Vec3 wOld = normalize(from.x[l + 1].sp.p - from.x[l].sp.p), d = to.x[l + 1].sp.p - to.x[l].sp.p;
     double theta = std::acos(std::clamp(double(dot(wOld, normalize(d))), -1.0, 1.0));
@@ -2836,8 +2708,7 @@ inline double causticPerturbation(const Scene& scene, const MutatedPath& x, Rng&
     return forward > 0 ? y.f * backward / (x.f * forward) : 0;
 }
 
-// The mutations that apply to x (the bidirectional one always, the only one that changes a
-// path's length or its kind); each is chosen with probability 1/count.
+// The mutations that apply to x (the bidirectional one always), each chosen with probability 1/count.
 enum MutationBits { kBidirectional = 1, kLens = 2, kCaustic = 4 };
 inline int applicableMutations(const Scene& scene, const MutatedPath& x, int enabled) {
     return (enabled & kBidirectional) | (enabled & kLens && lensVertex(scene, x) >= 0 ? kLens : 0) |
@@ -2845,8 +2716,7 @@ inline int applicableMutations(const Scene& scene, const MutatedPath& x, int ena
 }
 inline int bitCount(int bits) { return (bits & 1) + (bits >> 1 & 1) + (bits >> 2 & 1); }
 
-// One proposal from x and its acceptance a(y|x), the probability of choosing the mutation
-// included on both sides (it differs where y admits other perturbations than x).
+// One proposal from x and its acceptance a(y|x), the choice of the mutation counted both ways.
 inline double mutate(const Scene& scene, const SampleOptions& walk, LengthRange r, const MutatedPath& x, Rng& rng, MutatedPath& y, int* which = nullptr) {
     const int applicable = applicableMutations(scene, x, walk.mutations), count = bitCount(applicable);
     if (count == 0) return 0;  // (tests run the perturbations alone)
@@ -2871,14 +2741,12 @@ struct PathChain {
 };
 
 // -- The three Metropolis methods' passes. Paths of one and two segments (direct light, the lamp
-// seen) are bright and easy: a chain that follows f spends most of its mutations there, where a
-// bdpt sample is better. By default a bdpt sample per pixel renders them and the chains render
-// the rest (Veach; pbrt-v2, Mitsuba); --chain-short-paths gives the chains all lengths (the lesson:
-// notes, page 16).
+// seen) are bright and easy: a chain would spend most of its mutations there, where a bdpt sample
+// is better. A bdpt sample per pixel renders them and the chains the rest (Veach; pbrt-v2,
+// Mitsuba); --chain-short-paths gives the chains all lengths (notes, page 16).
 inline int shortestChainPath(const SampleOptions& opt) { return opt.chainShortPaths ? 1 : 3; }  // segments
 
-// The options of the chains' own samples and walks: no path shorter than the above, and for
-// mmlt's fixed-length subpaths and Veach's walks no roulette (their lengths are chosen).
+// The chains' own samples: no shorter path, and no roulette where lengths are chosen (mmlt, mlt).
 inline SampleOptions chainOptions(const SampleOptions& opt) {
     SampleOptions o = opt;
     o.minDepth = shortestChainPath(opt) - 1;
@@ -2898,19 +2766,15 @@ struct MetropolisPass {
     double lengthB(int i) const { return fByLength[i].count > 0 ? fByLength[i].sum / fByLength[i].count : 0; }
 };
 
-// The bootstrap's size: 100,000 samples for pssmlt, ten times as many for the other two. mlt's b
-// comes from its bootstrap alone (pssmlt's and mmlt's large steps keep adding to theirs), and its
-// error scales the whole image. mmlt spreads its samples over the path lengths, one strategy
-// each, and a length whose b_k the bootstrap leaves at 0 gets no chain, so no large step ever
-// corrects it: a length whose light one strategy alone finds (sds's lamp seen through glass,
-// s = 0 only) needs tens of thousands of samples to be seen at all (notes, page 17).
+// The bootstrap's size: 100,000 samples for pssmlt, ten times as many for mlt, whose b comes from
+// its bootstrap alone and scales the whole image, and mmlt, which spreads them over the path
+// lengths: a length the bootstrap leaves dark gets no chain, and one that a single strategy finds
+// (sds's lamp through glass, s = 0 only) needs tens of thousands to be seen (notes, page 17).
 inline int bootstrapSamples(const SampleOptions& opt) {
     return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::PSSMLT ? 100000 : 1000000;
 }
 
-// Independent numbers, whatever --sampler: mmlt deals its bootstrap samples out to the path
-// lengths by index, and every L-th point of a Sobol sequence is no longer evenly spread (every
-// second point of the radical inverse lies in [0, 1/2)): its b_k would come out low.
+// Independent numbers, whatever --sampler: mmlt deals them to the lengths by index (every L-th Sobol point is uneven).
 inline Rng bootstrapRng(const SampleOptions& opt, int sample, int stream) {
     return makeRng(opt.seed ^ 0x2545f4914f6cdd1dULL, uint64_t(sample), uint64_t(stream));
 }
@@ -2952,11 +2816,9 @@ inline void estimateB(MetropolisPass& mp) {
     mp.bStandardError = std::sqrt(variance);
 }
 
-// The chains' lengths (mmlt): chains in proportion to each length's b_k, by largest remainders,
-// so that no length with light is left without one while chains remain. A length's remainder
-// counts one more while it has no chain (+1 below), so every lit length gets its first chain
-// before any gets a second; once all have one, the rest go by b_k again. Drawing each chain's
-// length from the bootstrap instead would leave each length's share of the image to chance.
+// The chains' lengths (mmlt): in proportion to each length's b_k, by largest remainders, a length
+// without a chain counting one more (+1 below), so that every lit length gets a chain before any
+// gets a second; then by b_k again. Drawn from the bootstrap, each share would be left to chance.
 inline std::vector<int> chainLengths(const MetropolisPass& mp, int chains) {
     const int L = int(mp.fByLength.size());
     std::vector<int> count(L, 0);
@@ -2980,9 +2842,8 @@ inline std::vector<int> chainLengths(const MetropolisPass& mp, int chains) {
     return length;
 }
 
-// A chain's start: entry j of the running sums `cdf` of the bootstrap samples' f, drawn with
-// probability f_j / sum f from u (upper_bound finds the first sum above the pick, so f_j > 0);
-// `pick` is where u fell, u sum f.
+// A chain's start: entry j of the running sums `cdf` of the bootstrap's f, with probability
+// f_j / sum f (upper_bound: the first sum above the pick, so f_j > 0); `pick` is u sum f.
 inline int pickInProportion(const std::vector<double>& cdf, float u, double& pick) {
     pick = double(u) * cdf.back();
     return std::min(int(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()), int(cdf.size()) - 1);
@@ -2992,8 +2853,7 @@ inline int firstLitSample(const std::vector<double>& f) {
     return int(std::find_if(f.begin(), f.end(), [](double x) { return x > 0; }) - f.begin());
 }
 
-// pssmlt's and mmlt's first pass: b from --bootstrap samples, and each chain's start, a bootstrap
-// sample (of its length) drawn in proportion to its f.
+// pssmlt's and mmlt's first pass: b from the bootstrap, and each chain's start drawn in proportion to f.
 inline void startPrimarySampleChains(const Scene& scene, const SampleOptions& opt, int threads, MetropolisPass& mp) {
     const int n = bootstrapSamples(opt), lengths = lengthCount(opt);
     mp.chains.assign(std::max(1, opt.chains), PrimarySampleChain());
@@ -3022,8 +2882,7 @@ inline void startPrimarySampleChains(const Scene& scene, const SampleOptions& op
 
 inline long long mutationsOfChain(long long N, long long C, long long c) { return N / C + (c < N % C); }
 
-// The pass's image from the chains' splats, added in chain order. Chains of path length k
-// (mmlt) are scaled by b_k N / M_k (M_k their mutations, N = W H), the others by b.
+// The pass's image from the chains' splats, in chain order, scaled by b (mmlt: b_k N / M_k per length).
 inline void addChainSplats(MetropolisPass& mp, long long N, const std::vector<int>& lengthOfChain) {
     const long long C = (long long)lengthOfChain.size();
     std::vector<double> scale(mp.fByLength.size(), 0), done(mp.fByLength.size(), 0);
@@ -3035,8 +2894,7 @@ inline void addChainSplats(MetropolisPass& mp, long long N, const std::vector<in
         for (const Splat& s : mp.chainSplats[c]) mp.image[s.pixel] += s.value * float(scale[lengthOfChain[c]]);
 }
 
-// The expected-value splats of a state, weight h/f: a primary-sample state's contributions, or
-// a path's one pixel.
+// The expected-value splats of a state, weight h/f: a primary-sample state's, or a path's one pixel.
 inline void splatState(const PrimarySampleState& u, double weight, std::vector<Splat>& out) {
     for (const Splat& h : u.contributions)
         if (!isBlack(h.value)) out.push_back({h.pixel, h.value * float(weight)});
@@ -3045,9 +2903,8 @@ inline void splatState(const MutatedPath& x, double weight, std::vector<Splat>& 
     out.push_back({x.pixel, x.colour * float(x.f * weight)});
 }
 
-// One pass of a method's chains: W H mutations shared among them (one per pixel on average),
-// each chain's splats kept apart and added in chain order, so that the image does not depend on
-// --threads. step(chain, splat) makes one mutation and splats its expected values.
+// One pass of a method's chains: W H mutations shared among them, each chain's splats kept apart
+// (added in chain order: the image does not depend on --threads); step(chain, splat) makes one.
 template <class Chain, class Step>
 inline void mutateChains(std::vector<Chain>& chains, MetropolisPass& mp, long long N, int threads, const Step& step) {
     const long long C = (long long)chains.size();
@@ -3169,8 +3026,7 @@ inline SampleOptions shortPathOptions(const SampleOptions& opt) {
     return o;
 }
 
-// The Metropolis methods: the pixel's value is its share of the chains' pass, and (short paths
-// apart) one bdpt sample of paths of one and two segments.
+// The Metropolis methods: the pixel's share of the chains' pass, and a bdpt sample of the short paths.
 inline Vec3 sampleMLT(const Scene& scene, const SampleOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
     Vec3 chains = pass.metropolis->image[size_t(y) * scene.camera.width + x];
     if (opt.chainShortPaths) return chains;
@@ -3178,10 +3034,9 @@ inline Vec3 sampleMLT(const Scene& scene, const SampleOptions& opt, const PassDa
 }
 
 // == 9. Film, rendering loop, image files =======================================================
-// A pass gives every pixel one camera sample (and, for light-path methods, every pixel's random
-// stream one light path, splatted wherever it lands). Pixels write only themselves; splats are
-// kept per image row and added in row order after the pass, so the sum, and the image, is the
-// same bit for bit whatever the number of threads. The image is (sum of passes) / passes.
+// A pass gives every pixel one camera sample (and, for light-path methods, one light path from its
+// stream, splatted wherever it lands). Splats are kept per image row and added in row order, so
+// the image is the same bit for bit whatever the number of threads: (sum of passes) / passes.
 struct Image {
     int width = 0, height = 0;
     std::vector<Vec3> pixels;
@@ -3197,9 +3052,7 @@ inline double imageMean(const Image& img) {
     return s / (3.0 * std::max<size_t>(1, img.pixels.size()));
 }
 
-// What the methods prepare per pass, kept from pass to pass (vcm reuses its buffers, the
-// Metropolis methods their chains); after a render, what their last pass left (b, the chains'
-// acceptance, vcm's light vertices).
+// What the methods prepare per pass and keep (vcm's buffers, the chains); after a render, their last pass's.
 struct PassStorage {
     std::vector<Vpl> vpls;
     VcmPass vcm;
@@ -3278,8 +3131,7 @@ inline int strategyImageCount(const SampleOptions& opt) {  // vcm: one merge ima
     return opt.method == Method::VCM ? mergeImageIndex(L + 1, L) : L * (L + 3) / 2;
 }
 
-// The film: per pixel and channel the sums of the pass images and of their squares (the mean is
-// the image, the spread its variance), and the sums of the strategy images.
+// The film: per pixel the sums of the passes and their squares (image, variance), and the strategy images'.
 struct Film {
     int width, height, strategyMaxLength;
     std::vector<double> sum, sumSq;
@@ -3291,8 +3143,7 @@ struct Film {
         if (isFinite(value))
             for (int c = 0; c < 3; ++c) strategySum[image][3 * size_t(pixel) + c] += value[c];
     }
-    // A pass's rows: the pixels' samples are in `pass`; splats are added in row order, so that the
-    // image does not depend on which thread rendered which row. Returns the pass image's mean.
+    // A pass: the pixels' samples in `pass`, the splats added in row order. Returns the pass's mean.
     double addPass(std::vector<Vec3>& pass, const std::vector<RowOutput>& rows, RenderResult& result) {
         for (const RowOutput& row : rows) {
             result.nonFinite += row.nonFinite;
@@ -3506,8 +3357,7 @@ inline size_t editDistance(const std::string& a, const std::string& b) {
         }
     return d[a.size()][b.size()];
 }
-// The known word closest to a misspelt one, if it is close (a quarter of its letters or two,
-// whichever is more): "" otherwise.
+// The known word closest to a misspelt one, if within a quarter of its letters or two; else "".
 inline std::string closestWord(const std::string& word, const std::vector<std::string>& known) {
     std::string best;
     size_t bestDistance = std::max<size_t>(2, word.size() / 4) + 1;
@@ -3726,8 +3576,7 @@ struct SceneParser {
     }
 };
 
-// Line endings of any system: "\r\n" (Windows) and a lone '\r' (old Macs) end a line like '\n';
-// a UTF-8 byte-order mark (as some editors write) is skipped.
+// Line endings of any system ("\r\n", a lone '\r') end a line like '\n'; a UTF-8 byte-order mark is skipped.
 inline Scene parseScene(const std::string& text, const std::string& fileName) {
     SceneParser parser;
     parser.file = fileName;
@@ -3944,8 +3793,7 @@ std::string usage(const std::vector<OptionRow<Line>>& table) {
     return text;
 }
 
-// The words of a command line, each an option of the table, a value of one, or the scene's path;
-// suggest(word) names the option a misspelt one probably meant ("" if none; classroom/'s).
+// A command line's words, each an option, a value or the scene; suggest() names a misspelt one's (classroom/).
 template <class Line>
 Line parseOptions(const std::vector<std::string>& args, const std::vector<OptionRow<Line>>& table,
                   std::string (*suggest)(const std::string&) = nullptr) {
@@ -3973,8 +3821,7 @@ Line parseOptions(const std::vector<std::string>& args, const std::vector<Option
     return cl;
 }
 
-// What no single option can check: the combinations, and options the chosen method would ignore
-// (not checked where the methods are named elsewhere: classroom/'s side by side).
+// What no single option can check: combinations, and options the method would ignore (checkMethods).
 template <class Line>
 void checkCombinations(Line& cl, const std::vector<OptionRow<Line>>& table, bool checkMethods = true) {
     auto given = [&](const char* o) { return cl.given.count(o) > 0; };
