@@ -1450,7 +1450,7 @@ inline float specularDensity(const Scene& scene, const SurfacePoint& sp, Vec3 w)
     return sqr(eta) * absDot(w, sp.ns);
 }
 
-// The two densities at a vertex v whose subpath moved on along w: specularDensity's after a delta event.
+// The densities at a vertex v whose subpath moved on along w: specularDensity's after a delta event, else evalVertex's.
 inline void scatteringDensities(const Scene& scene, const PathVertex& v, Vec3 w, Transport mode, float& pdf, float& pdfReverse) {
     if (!v.delta) {
         evalVertex(scene, v, w, mode, pdf, pdfReverse);
