@@ -122,21 +122,19 @@ inline Rng makeRng(uint64_t seed, uint64_t a, uint64_t b) {
 }
 
 // -- Quasi-random numbers ("stratification"). N independent samples leave gaps and clumps: the
-// error of their mean falls as N^-1/2. N points that fill the unit square evenly, one in every cell
-// of every grid of N equal cells (the "elementary intervals"), miss no region of a smooth
-// integrand, and the error (RMSE) falls faster: with Owen's scramble as N^-3/2 for smooth 2D
-// integrands, about N^-3/4 across an edge such as a shadow's (page 9 measures an RMSE of N^-0.7 for
-// direct light). A path's numbers (film position, then per vertex the lamp choice, the lamp point,
-// the BSDF's direction, roulette) are one point in many dimensions, stratified jointly by the Sobol
-// sequence: dimension d is x_d(i) = C_d i (i's bits times a binary matrix, read as a binary
-// fraction), and its first 2^m points, and every aligned block of 2^m after them, fill the
-// elementary intervals of every low-dimensional projection nearly evenly. C_0 is the identity (the
-// radical inverse); the others come from a primitive polynomial and Joe and Kuo's (2008) initial
-// direction numbers m_k. Each pixel gets the sequence randomised by a nested uniform scramble (Owen
-// 1995): every binary digit of every coordinate flipped by a random function of the digits before
-// it, which keeps the stratification, makes each point uniform in [0,1)^d (the estimator stays
-// unbiased) and pixels' errors independent. Dimensions past kLowDiscrepancyDimensions (deep
-// bounces) come from PCG32 again.
+// error falls as N^-1/2. N points filling the unit square evenly, one in every cell of every grid
+// of N equal cells (the "elementary intervals"), miss no region: the RMSE falls as N^-3/2 for smooth
+// 2D integrands with Owen's scramble, N^-3/4 across a shadow's edge (page 9 measures N^-0.7). A
+// path's numbers (film position, then per vertex the lamp choice, the lamp point, the BSDF's
+// direction, roulette) are one point in many dimensions, stratified jointly by the Sobol sequence:
+// dimension d is x_d(i) = C_d i (i's bits times a binary matrix, read as a binary fraction), and
+// its first 2^m points, and every aligned block of 2^m after them, fill the elementary intervals of
+// every low-dimensional projection nearly evenly. C_0 is the identity (the radical inverse); the
+// others come from a primitive polynomial and Joe and Kuo's (2008) direction numbers m_k. Each
+// pixel's sequence is randomised by a nested uniform scramble (Owen 1995): every binary digit of
+// every coordinate flipped by a random function of the digits before it, which keeps the
+// stratification, makes each point uniform in [0,1)^d (the estimator stays unbiased) and pixels'
+// errors independent. Dimensions past kLowDiscrepancyDimensions (deep bounces) come from PCG32.
 
 constexpr uint32_t reverseBits(uint32_t x) {
     x = (x << 16) | (x >> 16);
@@ -300,8 +298,7 @@ inline Vec3 samplePowerCosine(float u1, float u2, float exponent) {  // pdf = (n
 inline Vec3 reflect(Vec3 w, Vec3 n) { return 2 * dot(w, n) * n - w; }  // mirror w about n
 inline float luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }  // Rec. 709
 
-// The lecture's deliberate mistakes, all here: each flag is off by default, the physically right
-// rule, and where a rule is applied the right one is written first, the mistake as an override.
+// The lecture's deliberate mistakes, all here, off by default; where applied, the right rule comes first.
 struct Conventions {
     bool fixedRayOffset = false;       // --fixed-ray-offset: push rays off by a rule of thumb (section 2)
     bool symmetricRefraction = false;  // --symmetric-refraction: the eta^2 rule on the wrong side (section 4)
@@ -932,16 +929,14 @@ inline bool specularScatter(const Scene& scene, const SurfacePoint& sp, Vec3 wo,
     }
     // Smooth dielectric: reflect with probability F, refract with 1-F, so weight = 1 (x eta rule).
     bool entering = dot(wo, sp.ng) > 0;
-    // eta_o on wo's side, eta_i on wi's: in radiance transport light arrives along wi, so these are
-    // the slides' eta_t (transmitted) and eta_i (incident) of "Power versus Radiance".
+    // eta_o on wo's side, eta_i on wi's: the slides' eta_t and eta_i ("Power versus Radiance").
     float etaO = entering ? 1 : m.ior, etaI = entering ? m.ior : 1, eta = etaO / etaI;
     float cosT = std::sqrt(std::max(0.0f, 1 - eta * eta * (1 - cosO * cosO)));
     bs.wi = normalize(-eta * wo + (eta * cosO - cosT) * n);
     bs.pdf = 1 - F;
     // Radiance flows wi -> wo: L_wo = (etaO/etaI)^2 L_wi. Importance carries no such factor.
     float etaScale = mode == Transport::Radiance ? sqr(etaO / etaI) : 1;
-    // The deliberate mistake swaps the rules: eye tracing scales like power (as smallpt), particles
-    // scale like radiance (a light tracer that reuses the radiance BTDF).
+    // The mistake swaps the rules: eye tracing scales like power (smallpt), particles like radiance.
     if (scene.conventions.symmetricRefraction) etaScale = mode == Transport::Radiance ? 1 : sqr(etaI / etaO);
     bs.weight = Vec3(etaScale * adjointCorrection(scene, sp, wo, bs.wi, mode));
     return bs.pdf > 0 && dot(bs.wi, sp.ng) * dot(wo, sp.ng) < 0;
@@ -3200,6 +3195,7 @@ struct Rendering {
     std::vector<RowOutput> rows;
     RenderResult result;
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    std::atomic<int> rowsDone{0};  // of the pass in flight (classroom/'s progress bar reads it)
     Rendering(const Scene& s, const RenderOptions& o)
         : scene(s), opt(o), threads(o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()))),
           film(s.camera.width, s.camera.height, o), pass(size_t(s.camera.width) * s.camera.height), rows(s.camera.height) {}
@@ -3210,6 +3206,7 @@ struct Rendering {
         const RayCount before = gRaysTraced;  // parallelRows adds the other threads' rays to this one's
         const PassData data = preparePass(scene, opt, p, threads, storage);
         const SampleFunction sample = sampleFunction(opt.method);
+        rowsDone = 0;
         parallelRows(H, threads, [&](int y) {
             RowOutput& row = rows[y];
             row.splats.clear();
@@ -3222,6 +3219,7 @@ struct Rendering {
                 if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
                 pass[size_t(y) * W + x] = v;
             }
+            rowsDone.fetch_add(1, std::memory_order_relaxed);
         });
         result.rays.closest += gRaysTraced.closest - before.closest;
         result.rays.shadow += gRaysTraced.shadow - before.shadow;

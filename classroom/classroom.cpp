@@ -538,25 +538,37 @@ struct VcmTotals {
     }
 };
 
-// The classroom's render loop: the lecture's passes (Rendering), with after each one the progress
-// bar, the pass handed to `watch` (the log, the live image, a side-by-side panel), and a Ctrl-C
-// honoured between passes.
+// The classroom's render loop: the lecture's passes (Rendering), with after each one the pass
+// handed to `watch` (the log, the live image, a side-by-side panel), a Ctrl-C honoured between
+// passes, and the progress bar drawn by a thread of its own from the rows done in the pass.
 template <class Watch>
 inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, bool progressBar, bool& interrupted, const Watch& watch) {
     Rendering r(scene, opt);
-    ProgressBar bar;
-    bar.enabled = progressBar && isatty(2);
+    std::atomic<int> passesDone{0};
+    std::atomic<bool> finished{false};
+    std::thread bar;
+    if (progressBar && isatty(2))
+        bar = std::thread([&] {
+            ProgressBar shown;
+            shown.enabled = true;
+            for (; !finished; std::this_thread::sleep_for(std::chrono::milliseconds(100))) {
+                double passes = passesDone + double(r.rowsDone) / scene.camera.height;
+                double f = opt.seconds > 0 ? secondsSince(r.start) / opt.seconds : passes / std::max(1, opt.spp);
+                shown.show(std::min(0.999, f), passesDone, secondsSince(r.start) * (1 / std::max(1e-9, f) - 1));
+            }
+            shown.show(1, passesDone, 0);
+        });
     do {
         if (r.result.passes > 0 && gInterrupts.load() > 0) {
             interrupted = true;
             break;
         }
         r.addPass();
+        passesDone = r.result.passes;
         watch(r);
-        double f = opt.seconds > 0 ? secondsSince(r.start) / opt.seconds : double(r.result.passes) / std::max(1, opt.spp);
-        bar.show(std::min(0.999, f), r.result.passes, secondsSince(r.start) * (1 / std::max(1e-9, f) - 1));
     } while (morePasses(r));
-    bar.show(1, r.result.passes, 0);
+    finished = true;
+    if (bar.joinable()) bar.join();
     return r.finish();
 }
 
