@@ -67,10 +67,8 @@ inline std::string duration(double seconds) {
 }
 
 struct ProgressBar {
-    bool enabled = false;
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last;
+    std::chrono::steady_clock::time_point last;
     void show(double fraction, int passes, double etaSeconds) {
-        if (!enabled) return;
         auto now = std::chrono::steady_clock::now();
         if (fraction < 1 && now - last < std::chrono::milliseconds(200)) return;
         last = now;
@@ -550,7 +548,6 @@ inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, 
     if (progressBar && isatty(2))
         bar = std::thread([&] {
             ProgressBar shown;
-            shown.enabled = true;
             for (; !finished; std::this_thread::sleep_for(std::chrono::milliseconds(100))) {
                 double passes = passesDone + double(r.rowsDone) / scene.camera.height;
                 double f = opt.seconds > 0 ? secondsSince(r.start) / opt.seconds : passes / std::max(1, opt.spp);
