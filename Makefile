@@ -70,8 +70,13 @@ build/scalar/test_bvh: tests/test_bvh.cpp $(RENDERER) tests/helpers.h tests/benc
 	@mkdir -p build/scalar
 	$(CXX) $(filter-out -O2 -g,$(CXXFLAGS)) -O1 -U__SSE2__ -U__AVX__ -I. -o $@ $< $(LDLIBS)
 
-test: bdpt build/bdpt-lecture build/all_tests build/native/test_bvh build/scalar/test_bvh
-	@tests/run_tests.sh build/all_tests build/native/test_bvh build/scalar/test_bvh
+# It says what it compiles before it does (about a minute of 2 cores), and its last lines give the
+# whole time, compiling included, and the count.
+TEST_PROGRAMS := bdpt build/bdpt-lecture build/all_tests build/native/test_bvh build/scalar/test_bvh
+test:
+	@echo "make test: compiling ./bdpt, bdpt.cpp alone and the test programs (about a minute), then the tests"
+	@export TEST_START=$$(date +%s); $(MAKE) --no-print-directory -s $(TEST_PROGRAMS) && \
+	  tests/run_tests.sh build/all_tests build/native/test_bvh build/scalar/test_bvh
 
 # Speed against accuracy (gnuplot-nox), tests/charts.sh. Quick by default, into build/ only;
 # FULL=1 gives the notes' budgets (still into build/). make figures is the one target that

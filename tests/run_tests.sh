@@ -3,7 +3,7 @@
 # once per test file (doctest's --source-file), and every other program given runs whole; each
 # prints one line: the file, what it checks (its first comment line), its test cases passed and
 # failed, and the seconds it took. A failing one's whole output follows its line; every output is
-# kept in build/NAME.log. The last line sums them: "tests: N passed, N failed".
+# kept in build/NAME.log. The last two lines give the time and the sum: "tests: N passed, N failed".
 #   tests/run_tests.sh ALL_TESTS [PROGRAM ...]
 set -u
 all=$1
@@ -55,5 +55,11 @@ done
 for program in "$@"; do
   run "$program" "$program.log" "the same tests, built as $(basename "$(dirname "$program")")" "$program"
 done
-printf 'tests: %d passed, %d failed (%d s)\n' "$passed" "$failed" "$(( $(date +%s) - start ))"
+# make test sets TEST_START before it compiles: the whole time, compiling included.
+if [ -n "${TEST_START:-}" ]; then
+  printf 'time: %d s in all, %d s of them compiling\n' "$(( $(date +%s) - TEST_START ))" "$(( start - TEST_START ))"
+else
+  printf 'time: %d s\n' "$(( $(date +%s) - start ))"
+fi
+printf 'tests: %d passed, %d failed\n' "$passed" "$failed"
 exit $status
