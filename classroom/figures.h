@@ -227,6 +227,16 @@ inline std::string fileStem(const std::string& path) {  // "build/notes/pool-lt.
     size_t slash = name.find_last_of('/');
     return slash == std::string::npos ? name : name.substr(slash + 1);
 }
+// The two files of a ratio as its title names them: their stems, or where the stems are the same
+// (two folders of strategy images) their folders' names too: "bdpt/s4_t1_weighted".
+inline std::string ratioTitle(const std::string& a, const std::string& b) {
+    auto named = [](const std::string& path) {
+        size_t slash = path.find_last_of('/');
+        std::string dir = slash == std::string::npos ? "" : path.substr(0, slash);
+        return (dir.empty() ? "" : fileStem(dir) + "/") + fileStem(path);
+    };
+    return fileStem(a) == fileStem(b) ? named(a) + " / " + named(b) : fileStem(a) + " / " + fileStem(b);
+}
 
 // --ratio: A/B over 4x4 blocks as a labelled false-colour PNG and a PFM of the ratios (0 where
 // undefined), and its percentiles on out. Returns the exit status.
@@ -250,7 +260,7 @@ inline int writeRatio(const Image& a, const Image& b, const std::string& nameA, 
     char means[64];
     std::snprintf(means, sizeof means, "ratio of means %.3f", imageMean(a) / imageMean(b));
     int figureW, figureH;
-    std::vector<unsigned char> figure = ratioFigure(r, fileStem(nameA) + " / " + fileStem(nameB), means, figureW, figureH);
+    std::vector<unsigned char> figure = ratioFigure(r, ratioTitle(nameA, nameB), means, figureW, figureH);
     for (Vec3& p : r.pixels) p = std::isfinite(p.x) ? p : Vec3(0);
     if (writePNGBytes(figure, figureW, figureH, png) && writePFM(r, pfm)) {
         out << "wrote " << png << " and " << pfm << "\n";

@@ -299,3 +299,11 @@ TEST_CASE("--profile's clock hands an interrupted part's time back to it") {
     CHECK(other < 0.05);    // nothing ran outside the parts
     gCostClock = CostClock();
 }
+
+// --ratio's title names the two files; where their names are the same (two folders of strategy
+// images) it names their folders too, or the title would read "A / A".
+TEST_CASE("--ratio's title tells two files of one name apart by their folders") {
+    CHECK(ratioTitle("build/notes/pool-lt.pfm", "build/notes/pool.pfm") == "pool-lt / pool");
+    CHECK(ratioTitle("build/bdpt/s4_t1_weighted.pfm", "build/lt/s4_t1_weighted.pfm") == "bdpt/s4_t1_weighted / lt/s4_t1_weighted");
+    CHECK(ratioTitle("a.pfm", "a.pfm") == "a / a");
+}
