@@ -430,3 +430,57 @@ TEST_CASE("mlt's acceptance counts the choice of the mutation where x and y admi
     CHECK(countsDiffer > 50);
     CHECK(withoutCountsOff > 20);  // where min(1, .) does not hide the factor
 }
+
+// The bidirectional mutation draws the split s of its n new vertices (s from the light side, n - s
+// from the camera's) uniformly from 0..n, T's sum over splits assumes it. With n = 1 (one vertex
+// replaced by one), s = 1 makes the new vertex by the light walk from x_0 and s = 0 by the camera
+// walk from x_2. The mutation's numbers are replayed: kd = ka = 2 and a = 1 chosen, then the
+// split's number u, then a direction number 0, which sends either walk along its vertex's normal:
+// which of the two hit points the new vertex is tells the split. It must be s = 1 for u >= 1/2.
+TEST_CASE("the bidirectional mutation's split of the new vertices is uniform over 0..n") {
+    Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
+    RenderOptions opt = quietOptions(Method::MLT, 1);
+    opt.chainShortPaths = true;
+    opt.maxDepth = 5;
+    const SampleOptions walk = chainOptions(opt);
+    const LengthRange range{1, opt.maxDepth + 1};
+    auto hitAlong = [&](const SurfacePoint& from, Vec3 dir) {
+        Hit hit = intersect(scene, spawnRay(from, dir));
+        return hit.found() ? surfaceAt(scene, spawnRay(from, dir), hit).p : Vec3(kInf);
+    };
+    int fromLight = 0, fromCamera = 0, wrong = 0;
+    for (const MutatedPath& x : startPaths(scene, opt, 60)) {
+        const int k = x.k();
+        if (k < 3) continue;  // x_0, x_1 replaced, x_2 and the pinhole kept, x_2 not the pinhole's neighbour only
+        double deleteTotal = 0, addBefore = 0, addTotal = 0, places = 0;
+        for (int d = 1; d <= k + 1; ++d) deleteTotal += deletionWeight(d);
+        for (int e = 1; e <= range.max + 1; ++e) {
+            double w = additionAllowed(e, 2, k, range) ? additionWeight(e, 2) : 0;
+            addTotal += w;
+            if (e < 2) addBefore += w;
+        }
+        for (int i = 0; i + 1 <= k; ++i) places += deletionAllowed(scene, x, i, 2, 2);
+        Vec3 lightHit = hitAlong(x.x[0].sp, x.x[0].sp.ng);
+        Vec3 wo = normalize(x.x[3].sp.p - x.x[2].sp.p);
+        Vec3 cameraHit = hitAlong(x.x[2].sp, facingShadingNormal(x.x[2].sp, wo));
+        for (int i = 0; i < 16; ++i) {
+            double u = (i + 0.5) / 16;
+            PrimaryStream numbers;
+            numbers.values = {float(0.5 / deleteTotal), float((addBefore + 0.25) / addTotal), float(1.5 / places), float(u), 0.0f, 0.3f};
+            Rng fresh = makeRng(3, uint64_t(i), 0);
+            numbers.fresh = &fresh;
+            Rng rng;
+            rng.replay = &numbers;
+            MutatedPath y;
+            if (!(bidirectionalMutation(scene, walk, range, x, rng, y) > 0) || y.k() != k) continue;
+            Vec3 p = y.x[1].sp.p;
+            bool light = length(p - lightHit) < 1e-4f, camera = length(p - cameraHit) < 1e-4f;
+            fromLight += light, fromCamera += camera;
+            wrong += light != (u >= 0.5) || light == camera;
+        }
+    }
+    MESSAGE(fromLight << " new vertices made by the light walk, " << fromCamera << " by the camera walk, " << wrong << " by the wrong one");
+    CHECK(fromLight > 30);
+    CHECK(fromCamera > 30);
+    CHECK(wrong == 0);
+}
