@@ -403,7 +403,7 @@ inline int printFailureTable(const std::vector<std::string>& logs, std::ostream&
         constexpr int kFewPasses = 8;
         if (n < kFewPasses)
             err << path << ":0: warning: only " << n << " passes after the first tenth of the time: its slope and bias are "
-                << "noise, not the method's (a longer --time, or a quieter machine)\n";
+                << "noise, not the method's (render longer: --time for ./bdpt, FULL=1 for make charts; or a quieter machine)\n";
         char row[512];
         std::snprintf(row, sizeof row, "| %s | %s%s%s | %.2f%s | %+.1f%%%s | %.0f | %s |\n", scene.c_str(), method.c_str(),
                       options.empty() ? "" : " ", options.c_str(), slope, n < kFewPasses ? " (few passes)" : "",
