@@ -54,6 +54,19 @@ TEST_CASE("a path's f and densities are the same from every strategy that can ma
     }
 }
 
+// mlt's options for the mutation tests: the chains make every path length (one segment up) to D bounces.
+struct MutationOptions {
+    RenderOptions opt;
+    SampleOptions walk;
+    LengthRange range;
+};
+static MutationOptions mutationOptions(int maxDepth) {
+    RenderOptions opt = quietOptions(Method::MLT, 1);
+    opt.chainShortPaths = true;
+    opt.maxDepth = maxDepth;
+    return {opt, chainOptions(opt), LengthRange{1, maxDepth + 1}};
+}
+
 // -- T(y|x) of the bidirectional mutation, from its definition (Veach 1997, 11.4.2), for scenes of
 // diffuse quads and one light: P(kd) P(ka|kd) / (#places (n+1)) sum over the splits of the new
 // vertices' densities, each written out here from the geometry.
@@ -158,21 +171,17 @@ bool replacedRange(const MutatedPath& x, const MutatedPath& y, int& a, int& kd, 
 TEST_CASE("the bidirectional mutation's acceptance is f(y) T(x|y) / (f(x) T(y|x)) with T written out from its definition") {
     for (std::string name : {"cornell", "cornell-point"}) {
         Scene scene = sceneAt("scenes/" + name + ".scene", 32, 32);
-        RenderOptions opt = quietOptions(Method::MLT, 1);
-        opt.chainShortPaths = true;
-        opt.maxDepth = 5;  // lengths reach the clamp of the length distribution
-        const SampleOptions walk = chainOptions(opt);
-        const LengthRange range{1, opt.maxDepth + 1};
-        FromScratch T{scene, opt.maxDepth + 1, 1};
-        std::vector<MutatedPath> starts = startPaths(scene, opt, 300);
+        const MutationOptions m = mutationOptions(5);  // lengths reach the clamp of the length distribution
+        FromScratch T{scene, m.opt.maxDepth + 1, 1};
+        std::vector<MutatedPath> starts = startPaths(scene, m.opt, 300);
         REQUIRE(starts.size() == 300);
         Rng rng = makeRng(5, 0, 0);
         int compared = 0, agree = 0, oneSplitOff = 0, lengthsUnclampedOff = 0;
         double worst = 0;
         for (const MutatedPath& x : starts)
-            for (int m = 0; m < 10; ++m) {
+            for (int proposal = 0; proposal < 10; ++proposal) {
                 MutatedPath y;
-                double ratio = bidirectionalMutation(scene, walk, range, x, rng, y);
+                double ratio = bidirectionalMutation(scene, m.walk, m.range, x, rng, y);
                 if (!(ratio > 0)) continue;
                 int a, kd, ka;
                 if (!replacedRange(x, y, a, kd, ka)) {  // a point light drawn again, and nothing else changed: y = x
@@ -278,7 +287,7 @@ TEST_CASE("the lens and caustic perturbations' acceptance is that of their moves
     };
     int lensCompared = 0, lensAgree = 0, lensFOnlyOff = 0, causticCompared = 0, causticAgree = 0, causticFOnlyOff = 0;
     for (const MutatedPath& x : starts)
-        for (int m = 0; m < 4; ++m) {
+        for (int proposal = 0; proposal < 4; ++proposal) {
             MutatedPath y;
             double ratio = lensPerturbation(scene, x, rng, y);
             if (ratio > 0 && filmArea(x) > 0 && filmArea(y) > 0) {
@@ -406,20 +415,16 @@ TEST_CASE("mlt's f through glass carries F where the path reflects and 1 - F whe
 // acceptance is below 1 either way).
 TEST_CASE("mlt's acceptance counts the choice of the mutation where x and y admit different ones") {
     Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
-    RenderOptions opt = quietOptions(Method::MLT, 1);
-    opt.chainShortPaths = true;
-    opt.maxDepth = 5;
-    const SampleOptions walk = chainOptions(opt);
-    const LengthRange range{1, opt.maxDepth + 1};
-    FromScratch T{scene, opt.maxDepth + 1, 1};
+    const MutationOptions m = mutationOptions(5);
+    FromScratch T{scene, m.opt.maxDepth + 1, 1};
     auto count = [](const MutatedPath& p) { return p.k() >= 2 ? 3 : 1; };
     Rng rng = makeRng(11, 0, 0);
     int compared = 0, agree = 0, countsDiffer = 0, withoutCountsOff = 0;
-    for (const MutatedPath& x : startPaths(scene, opt, 300))
-        for (int m = 0; m < 30; ++m) {
+    for (const MutatedPath& x : startPaths(scene, m.opt, 300))
+        for (int proposal = 0; proposal < 30; ++proposal) {
             MutatedPath y;
             int which = 0;
-            double a = mutate(scene, walk, range, x, rng, y, &which);
+            double a = mutate(scene, m.walk, m.range, x, rng, y, &which);
             int from, kd, ka;
             if (which != kBidirectional || !(a > 0) || !replacedRange(x, y, from, kd, ka)) continue;
             double ratio = y.f * T.transition(y, x, from, ka, kd) / (x.f * T.transition(x, y, from, kd, ka));
@@ -446,23 +451,19 @@ TEST_CASE("mlt's acceptance counts the choice of the mutation where x and y admi
 // which of the two hit points the new vertex is tells the split. It must be s = 1 for u >= 1/2.
 TEST_CASE("the bidirectional mutation's split of the new vertices is uniform over 0..n") {
     Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
-    RenderOptions opt = quietOptions(Method::MLT, 1);
-    opt.chainShortPaths = true;
-    opt.maxDepth = 5;
-    const SampleOptions walk = chainOptions(opt);
-    const LengthRange range{1, opt.maxDepth + 1};
+    const MutationOptions m = mutationOptions(5);
     auto hitAlong = [&](const SurfacePoint& from, Vec3 dir) {
         Hit hit = intersect(scene, spawnRay(from, dir));
         return hit.found() ? surfaceAt(scene, spawnRay(from, dir), hit).p : Vec3(kInf);
     };
     int fromLight = 0, fromCamera = 0, wrong = 0;
-    for (const MutatedPath& x : startPaths(scene, opt, 60)) {
+    for (const MutatedPath& x : startPaths(scene, m.opt, 60)) {
         const int k = x.k();
         if (k < 3) continue;  // x_0, x_1 replaced, x_2 and the pinhole kept, x_2 not the pinhole's neighbour only
         double deleteTotal = 0, addBefore = 0, addTotal = 0, places = 0;
         for (int d = 1; d <= k + 1; ++d) deleteTotal += deletionWeight(d);
-        for (int e = 1; e <= range.max + 1; ++e) {
-            double w = additionAllowed(e, 2, k, range) ? additionWeight(e, 2) : 0;
+        for (int e = 1; e <= m.range.max + 1; ++e) {
+            double w = additionAllowed(e, 2, k, m.range) ? additionWeight(e, 2) : 0;
             addTotal += w;
             if (e < 2) addBefore += w;
         }
@@ -479,7 +480,7 @@ TEST_CASE("the bidirectional mutation's split of the new vertices is uniform ove
             Rng rng;
             rng.replay = &numbers;
             MutatedPath y;
-            if (!(bidirectionalMutation(scene, walk, range, x, rng, y) > 0) || y.k() != k) continue;
+            if (!(bidirectionalMutation(scene, m.walk, m.range, x, rng, y) > 0) || y.k() != k) continue;
             Vec3 p = y.x[1].sp.p;
             bool light = length(p - lightHit) < 1e-4f, camera = length(p - cameraHit) < 1e-4f;
             fromLight += light, fromCamera += camera;
@@ -500,33 +501,26 @@ TEST_CASE("the bidirectional mutation's split of the new vertices is uniform ove
 // a refraction's 1 - F (about 0.96) and a reflection's F (about 0.04) stay in f alone.
 TEST_CASE("the bidirectional mutation's T counts the glass lobes of its new vertices") {
     Scene scene = sceneAt("scenes/cornell-glass.scene", 32, 32);
-    RenderOptions opt = quietOptions(Method::MLT, 1);
-    opt.chainShortPaths = true;
-    opt.maxDepth = 6;
-    const SampleOptions walk = chainOptions(opt);
-    const LengthRange range{1, opt.maxDepth + 1};
-    auto connectable = [&](const PathVertex& v) {
-        return v.type != PathVertex::Surface || !isSpecular(scene.materials[scene.shapes[v.sp.shape].material]);
-    };
+    const MutationOptions m = mutationOptions(6);
     auto T = [&](const MutatedPath& from, const MutatedPath& to, int a, int kd, int ka, bool& throughGlass) {
         double sum = 0, lobes = 1;
         for (int s = 0; s < ka; ++s) {  // s of the ka - 1 new vertices from the light side
             int lightEnd = a + s - 1, cameraEnd = a + s;
-            if ((lightEnd >= 0 && !connectable(to.x[lightEnd])) || !connectable(to.x[cameraEnd])) continue;
+            if ((lightEnd >= 0 && !connectable(scene, to.x[lightEnd])) || !connectable(scene, to.x[cameraEnd])) continue;
             double p = 1;
             for (int i = a; i < a + ka - 1; ++i) p *= i < a + s ? to.pL[i] : to.pE[i];
             sum += p;
         }
-        for (int i = a; i < a + ka - 1; ++i) lobes *= glassLobe(scene, to, i), throughGlass |= !connectable(to.x[i]);
+        for (int i = a; i < a + ka - 1; ++i) lobes *= glassLobe(scene, to, i), throughGlass |= !connectable(scene, to.x[i]);
         int places = deletionPlaces(scene, from, kd, ka);
-        return places ? deletionProbability(kd, from.k()) * additionProbability(ka, kd, from.k(), range) / (double(places) * ka) * sum * lobes : 0;
+        return places ? deletionProbability(kd, from.k()) * additionProbability(ka, kd, from.k(), m.range) / (double(places) * ka) * sum * lobes : 0;
     };
     Rng rng = makeRng(13, 0, 0);
     int compared = 0, agree = 0;
-    for (const MutatedPath& x : startPaths(scene, opt, 300))
-        for (int m = 0; m < 40; ++m) {
+    for (const MutatedPath& x : startPaths(scene, m.opt, 300))
+        for (int proposal = 0; proposal < 40; ++proposal) {
             MutatedPath y;
-            double ratio = bidirectionalMutation(scene, walk, range, x, rng, y);
+            double ratio = bidirectionalMutation(scene, m.walk, m.range, x, rng, y);
             int a, kd, ka;
             if (!(ratio > 0) || !replacedRange(x, y, a, kd, ka)) continue;
             bool glass = false;
