@@ -6,7 +6,11 @@ ifeq ($(MAKELEVEL),0)
 MAKEFLAGS += --jobs=$(shell nproc 2>/dev/null || echo 2)
 endif
 CXX      ?= g++
-CXXFLAGS ?= -O2 -g -std=c++17 -Wall -Wextra -pthread
+CXXFLAGS ?= -O2 -std=c++17 -Wall -Wextra -pthread
+# DEBUG=1: debug information for gdb and perf (a third more compile time).
+ifeq ($(DEBUG),1)
+CXXFLAGS += -g
+endif
 LDLIBS   ?= -lstb -pthread
 # Without Debian's libstb-dev: make STB_DIR=FOLDER, where FOLDER holds stb_image_write.h (and, for
 # make test, stb_image.h: public-domain headers of github.com/nothings/stb); they are then
@@ -42,23 +46,23 @@ bdpt: $(RENDERER) build/flags
 # make test renders every method with it and checks that ./bdpt renders the same bits.
 build/bdpt-lecture: bdpt.cpp build/flags
 	@mkdir -p build
-	$(CXX) $(filter-out -g,$(CXXFLAGS)) -o $@ bdpt.cpp $(LDLIBS)
+	$(CXX) $(CXXFLAGS) -o $@ bdpt.cpp $(LDLIBS)
 
 run: bdpt
 	@mkdir -p build
 	./bdpt scenes/cornell.scene --spp 64 --out build/cornell.png
 
-# One test file alone, as its own program (make build/test_bdpt), for work on it.
+# One test file alone, as its own program (make build/test_bdpt), for work on it: with debug
+# information.
 build/%: tests/%.cpp $(RENDERER) $(TEST_HEADERS) build/flags
 	@mkdir -p build
-	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
+	$(CXX) $(CXXFLAGS) -g -I. -o $@ $< $(LDLIBS)
 
 # make test: every test file in one program (tests/all_tests.cpp), so that bdpt.cpp is compiled
 # once; tests/run_tests.sh runs it file by file, one line each, and sums them on the last line.
-# Without debug information, which is a quarter of the compile (make build/test_bdpt keeps it).
 build/all_tests: tests/all_tests.cpp $(TEST_FILES) $(RENDERER) $(TEST_HEADERS) build/flags
 	@mkdir -p build
-	$(CXX) $(filter-out -g,$(CXXFLAGS)) -I. -o $@ $< $(LDLIBS)
+	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 # The BVH tests once more as built by NATIVE=1 (8-wide AVX nodes where the CPU has AVX), and as
 # on a CPU without SSE (the scalar box test); at -O1 without debug information, which halves their
@@ -85,6 +89,14 @@ test:
 refs: bdpt
 	@echo "make refs: rewrites scenes/refs/ (committed), 2 seeds x 90 s per scene (door-hidden 2 x 27 min): about 95 minutes"
 	+tests/charts.sh refs
+
+# The tests' own references (committed), where no scene of scenes/refs/ fits: the room of
+# sds-ior1 without its balls (test_vcm) and cornell's direct light (test_sampler). About 3 minutes.
+test-refs: bdpt
+	@mkdir -p build/test-refs
+	./bdpt tests/sds-ior1-open.scene --method nee --res 48x32 --spp 65536 --seed 3 --out build/test-refs/sds-ior1-open.png
+	./bdpt scenes/cornell.scene --method nee --mis --maxdepth 1 --sampler random --res 24x24 --spp 262144 --seed 77 --out build/test-refs/cornell-direct.png
+	cp build/test-refs/sds-ior1-open.pfm build/test-refs/cornell-direct.pfm tests/refs/
 
 charts: bdpt
 	+tests/charts.sh charts
@@ -129,6 +141,7 @@ help:
 	@echo "                FULL=1 after charts, efficiency or bench: the notes' budgets (12, 25 and 15 minutes)"
 	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 50 minutes)"
 	@echo "make refs       REWRITES the committed references in scenes/refs/ (about 95 minutes)"
+	@echo "make test-refs  REWRITES the tests' own references in tests/refs/ (about 3 minutes)"
 	@echo "make fuzz       the scene parser under libFuzzer for FUZZ_SECONDS (60); make clean"
 
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it too).

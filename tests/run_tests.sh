@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # make test's runner. The test program (all of tests/test_*.cpp in one, tests/all_tests.cpp) runs
-# once per test file (doctest's --source-file), and every other program given runs whole; each
-# prints one line: the file, what it checks (its first comment line), its test cases passed and
-# failed, and the seconds it took. A failing one's whole output follows its line; every output is
-# kept in build/NAME.log. The last two lines give the time and the sum: "tests: N passed, N failed".
+# once per test file (doctest's --source-file), and every other program given runs whole, as many
+# at once as there are cores (the tests render on one thread each: see quietOptions); each prints
+# one line, in file order: the file, what it checks (its first comment line), its test cases
+# passed and failed, and the seconds it took. A failing one's whole output follows its line; every
+# output is kept in build/NAME.log. The last two lines give the time and the sum: "tests: N
+# passed, N failed".
 #   tests/run_tests.sh ALL_TESTS [PROGRAM ...]
 set -u
 all=$1
@@ -21,13 +23,29 @@ line() {  # name, log, exit status, seconds, description
   printf '%-22s %3d passed %2d failed %5s s  %s\n' "$1" "$p" "$f" "$4" "$5"
   if [ "$f" -gt 0 ]; then sed 's/^/    /' "$2"; fi
 }
-run() {  # name, log, description, command...
-  local name=$1 log=$2 description=$3 t0 rc
+jobs=${TEST_JOBS:-$(nproc 2>/dev/null || echo 2)}
+names=() logs=() descriptions=() printed=0 running=0
+start_job() {  # name, log, description, command...: runs in the background, its exit status and
+  local log=$2  # seconds then in LOG.done
+  names+=("$1") logs+=("$2") descriptions+=("$3")
   shift 3
-  t0=$(date +%s.%N)
-  "$@" --reporters=notes > "$log" 2>&1
-  rc=$?
-  line "$name" "$log" "$rc" "$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')" "$description"
+  rm -f "$log.done"
+  ( t0=$(date +%s.%N); "$@" --reporters=notes > "$log" 2>&1; rc=$?
+    echo "$rc $(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')" > "$log.done" ) &
+  running=$((running + 1))
+}
+print_finished() {  # the lines of the finished jobs, in order, up to the first one still running
+  while [ "$printed" -lt "${#names[@]}" ] && [ -s "${logs[$printed]}.done" ]; do
+    local rc seconds
+    read -r rc seconds < "${logs[$printed]}.done"
+    rm -f "${logs[$printed]}.done"
+    line "${names[$printed]}" "${logs[$printed]}" "$rc" "$seconds" "${descriptions[$printed]}"
+    printed=$((printed + 1))
+  done
+}
+run() {  # name, log, description, command...
+  while [ "$running" -ge "$jobs" ]; do wait -n; running=$((running - 1)); print_finished; done
+  start_job "$@"
 }
 for file in tests/test_*.cpp; do
   name=$(basename "$file" .cpp)
@@ -55,6 +73,8 @@ done
 for program in "$@"; do
   run "$program" "$program.log" "the same tests, built as $(basename "$(dirname "$program")")" "$program"
 done
+wait
+print_finished
 # make test sets TEST_START before it compiles: the whole time, compiling included.
 if [ -n "${TEST_START:-}" ]; then
   printf 'time: %d s in all, %d s of them compiling\n' "$(( $(date +%s) - TEST_START ))" "$(( start - TEST_START ))"

@@ -77,14 +77,18 @@ TEST_CASE("scale: the Cornell box at 1e-5, 1e-3, 1 and 1e3 gives the same quadra
         for (float k : {1e-5f, 1e-3f, 1e3f}) {
             CAPTURE(int(run.m));
             CAPTURE(k);
-            double rel = 0, relFixed = 0;
+            double rel = 0;
             double z = pairedZ(unit, passRegionMeans(scaledScene("scenes/cornell.scene", k, 24, 24), methodOptions(run.m, run.spp, 11), 2), &rel);
-            double zFixed = pairedZ(unit, passRegionMeans(scaledScene("scenes/cornell.scene", k, 24, 24, true), methodOptions(run.m, run.spp, 11), 2), &relFixed);
-            MESSAGE(std::string(methodName(run.m)) << " scale " << k << ": z " << z << " rel " << rel << ", with the fixed offset " << zFixed << " rel " << relFixed);
+            MESSAGE(std::string(methodName(run.m)) << " scale " << k << ": z " << z << " rel " << rel);
             CHECK(z < 4);
             CHECK(rel < 1e-3);
-            if (k == 1e-5f) CHECK(zFixed > 4);  // the rule of thumb: a 5.6 mm box loses 1% of its light
         }
+        // The rule of thumb for the ray offset, 5e-5 (1 + max|p|), loses 1% of the light of a
+        // 5.6 mm box (at 1e-3 and 1e3 it loses 0.01-0.2%, which these passes do not resolve).
+        double relFixed = 0;
+        double zFixed = pairedZ(unit, passRegionMeans(scaledScene("scenes/cornell.scene", 1e-5f, 24, 24, true), methodOptions(run.m, run.spp, 11), 2), &relFixed);
+        MESSAGE(std::string(methodName(run.m)) << " scale 1e-5 with the fixed offset: z " << zFixed << " rel " << relFixed);
+        CHECK(zFixed > 4);
     }
 }
 
