@@ -235,7 +235,7 @@ TEST_CASE("--live: the PNG is rewritten whole while rendering, and the log grows
     // --live there would be no PNG; with it the last one written is there, whole (PNG signature
     // first, IEND chunk last), and the log holds the passes so far.
     for (const char* f : {"build/tmp/fh_live.png", "build/tmp/fh_live.pfm", "build/tmp/fh_live.csv"}) std::remove(f);
-    auto [status, text] = shellRun("timeout -s KILL 2 ./bdpt scenes/cornell.scene --res 96x96 --spp 1000000 --live 0.2 "
+    auto [status, text] = shellRun("timeout -s KILL 2 ./bdpt scenes/cornell.scene --res 96x96 --spp 1000000 --live 0.2 --threads 1 "
                                    "--log build/tmp/fh_live.csv --out build/tmp/fh_live.png");
     CHECK(status != 0);  // killed
     std::string png = readFile("build/tmp/fh_live.png");
@@ -293,11 +293,12 @@ TEST_CASE("--ref without --log: the summary says the final error; ETAs in hours 
 }
 
 // A projector's viewer opens the file as soon as the command starts: mlt's bootstrap, a few
-// seconds, must not leave it showing an older run's image or nothing at all.
+// seconds, must not leave it showing an older run's image or nothing at all. (These runs, killed
+// after 2 s, use one thread: make test runs another test file on the other core.)
 TEST_CASE("--live writes a first frame at once, before mlt's bootstrap ends") {
     writeTempFile("fh_first.png", "an older run's image");
     auto [status, text] = shellRun("timeout -s KILL 2 ./bdpt scenes/door.scene --method mlt --bootstrap 10000000 --res 64x48 "
-                                   "--time 60 --live 1 --out build/tmp/fh_first.png");
+                                   "--time 60 --live 1 --threads 1 --out build/tmp/fh_first.png");
     CHECK(status != 0);  // killed during the bootstrap
     int w = 0, h = 0, channels = 0;
     CHECK(stbi_info("build/tmp/fh_first.png", &w, &h, &channels) == 1);
@@ -306,7 +307,7 @@ TEST_CASE("--live writes a first frame at once, before mlt's bootstrap ends") {
     // Side by side too: the labelled frame of every panel at once, mlt's saying it is starting.
     writeTempFile("fh_first_sbs.png", "an older run's image");
     auto [status2, text2] = shellRun("timeout -s KILL 2 ./bdpt scenes/door.scene --side-by-side \"bdpt,mlt --bootstrap 10000000\" "
-                                     "--res 64x48 --time 60 --live 1 --out build/tmp/fh_first_sbs.png");
+                                     "--res 64x48 --time 60 --live 1 --threads 1 --out build/tmp/fh_first_sbs.png");
     CHECK(status2 != 0);
     CHECK(stbi_info("build/tmp/fh_first_sbs.png", &w, &h, &channels) == 1);
     CHECK(w >= 1280);

@@ -126,7 +126,8 @@ TEST_CASE("sds-ior1: vcm converges to the room without the balls, bdpt misses th
     CHECK(rmse[1] < 0.5 * rmse[0]);
     double fixedRadiusBias[2];
     for (int i = 0; i < 2; ++i) {
-        RenderOptions o = quietOptions(Method::VCM, 512, 1);
+        // r_0's bias is steady at 256 passes (+0.30% to +0.38% over 4 seeds); r_0/4's noise needs 512.
+        RenderOptions o = quietOptions(Method::VCM, i ? 512 : 256, 1);
         o.alpha = 1;  // r_i = r_0 in every pass
         o.mergeRadius = defaultMergeRadius(balls) / (i ? 4 : 1);
         fixedRadiusBias[i] = compareToReference(render(balls, o).image, reference).bias;
