@@ -10,6 +10,9 @@
 #include <stb/stb_image.h>  // reading back what the renderer wrote (libstb-dev holds its code too)
 #endif
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
+// Each assertion one function call, not a try block of its own: the test programs compile in 15%
+// less time; an exception inside an assertion fails its test case instead (doctest's manual).
+#define DOCTEST_CONFIG_SUPER_FAST_ASSERTS
 #include <doctest/doctest.h>
 
 // make test's reporter (`--reporters=notes`): doctest's console output, except that a MESSAGE,

@@ -300,7 +300,7 @@ TEST_CASE("shading normals: ir and bdpt agree with nee with the adjoint correcti
     // its connections alike; 4 x 4 regions, since the error is regional (the floor near the camera
     // is brightened, the back wall darkened).
     Scene scene = sceneAt("scenes/shading-normals.scene", 32, 32);
-    RegionEstimate nee = renderRegions(scene, quietOptions(Method::NEE, 1024, 44), 4);
+    RegionEstimate nee = referenceRegions("shading-normals", 4);  // nee, 84,000 passes (scenes/refs)
     struct Run { Method m; int spp; };
     for (Run run : {Run{Method::LT, 1024}, Run{Method::IR, 1024}, Run{Method::BDPT, 256}}) {
         CAPTURE(int(run.m));
