@@ -142,7 +142,55 @@ help:
 	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 50 minutes)"
 	@echo "make refs       REWRITES the committed references in scenes/refs/ (about 95 minutes)"
 	@echo "make test-refs  REWRITES the tests' own references in tests/refs/ (about 3 minutes)"
+	@echo "make web        the page in the browser, methods side by side: build/web/ (about 30 s; needs emscripten)"
+	@echo "make serve-web  make web, then serves it at http://localhost:8000/ (PORT=...)"
+	@echo "make test-web   the page in headless chromium: means against ./bdpt, every method, a scene error (about a minute)"
+	@echo "make bench-web  WebAssembly's time per sample against ./bdpt's, one thread each (about a minute)"
 	@echo "make fuzz       the scene parser under libFuzzer for FUZZ_SECONDS (60); make clean"
+
+# The page in the browser (classroom/web/): the renderer compiled to WebAssembly by Debian's
+# emscripten, with SSE's intrinsics on WebAssembly's SIMD (the BVH's 4-wide box test), the scenes
+# and their references embedded, and the page's files beside it: build/web/, a static folder for any
+# web server. NODE_PATH: Debian's emscripten finds its optimiser's modules (acorn) there.
+WEB_FLAGS := -std=c++17 -O3 -msimd128 -msse -msse2 -fwasm-exceptions -DBDPT_STB_HEADER -I/usr/include/stb
+WEB_PAGE := $(addprefix build/web/,index.html app.js worker.js style.css)
+web: build/web/bdpt-web.js build/web/scenes.js $(WEB_PAGE)
+build/web/bdpt-web.js: classroom/web/bdpt-web.cpp bdpt.cpp classroom/figures.h $(wildcard scenes/*.scene scenes/refs/*.pfm)
+	@command -v em++ >/dev/null || { echo "make web needs Debian's emscripten: apt-get install emscripten"; exit 1; }
+	@mkdir -p build/web
+	NODE_PATH=/usr/share/nodejs em++ $(WEB_FLAGS) -o build/web/bdpt-web.tmp.js classroom/web/bdpt-web.cpp \
+	  -sMODULARIZE=1 -sEXPORT_NAME=createBdpt -sALLOW_MEMORY_GROWTH=1 -sENVIRONMENT=web,worker \
+	  -sEXPORTED_RUNTIME_METHODS=cwrap --embed-file scenes@/scenes --exclude-file '*.png' --exclude-file '*.csv'
+	sed 's/bdpt-web\.tmp\.wasm/bdpt-web.wasm/g' build/web/bdpt-web.tmp.js > build/web/bdpt-web.js
+	mv build/web/bdpt-web.tmp.wasm build/web/bdpt-web.wasm && rm build/web/bdpt-web.tmp.js
+# The committed scenes' texts for the page's scene menu and editor.
+build/web/scenes.js: $(wildcard scenes/*.scene)
+	@mkdir -p build/web
+	node -e 'const fs = require("fs"), o = {}; for (const f of process.argv.slice(1)) o[f] = fs.readFileSync(f, "utf8"); fs.writeFileSync("$@.tmp", "const BDPT_SCENES = " + JSON.stringify(o, null, 1) + ";\n")' $^
+	mv $@.tmp $@
+build/web/%: classroom/web/%
+	@mkdir -p build/web
+	cp $< $@
+
+# make serve-web: the page at http://localhost:8000/ (PORT=...), from Python's own web server.
+PORT ?= 8000
+serve-web: web
+	@echo "the page: http://localhost:$(PORT)/  (Ctrl-C stops the server)"
+	cd build/web && python3 -m http.server $(PORT)
+
+# make test-web: the page in headless Debian chromium, driven over its DevTools protocol
+# (python3-websocket): means against ./bdpt's, every method, a scene error, a pixel's strategies,
+# a screenshot (build/test-web/page.png).
+test-web: web bdpt
+	/usr/bin/python3 tests/test_web.py
+
+# make bench-web: time per sample of the WebAssembly build (under Node, one thread) against
+# ./bdpt on one thread, cornell with bdpt, interleaved runs, medians of CPU seconds.
+build/web-bench/bdpt.js: bdpt.cpp
+	@mkdir -p build/web-bench
+	NODE_PATH=/usr/share/nodejs em++ $(WEB_FLAGS) -o $@ bdpt.cpp -sNODERAWFS=1 -sALLOW_MEMORY_GROWTH=1 -sSINGLE_FILE=1
+bench-web: bdpt build/web-bench/bdpt.js
+	tests/bench_web.sh
 
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it too).
 SANITIZE := -O1 -g -std=c++17 -Wall -Wextra -pthread -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
@@ -203,4 +251,4 @@ uneven: build/uneven
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize fuzz bench efficiency metropolis uneven refs charts panels class figures help clean FORCE
+.PHONY: all run test test-sanitize web serve-web test-web bench-web fuzz bench efficiency metropolis uneven refs charts panels class figures help clean FORCE
