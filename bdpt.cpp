@@ -63,6 +63,8 @@ inline Vec3 operator*(Vec3 a, Vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}
 inline Vec3 operator*(Vec3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
 inline Vec3 operator*(float s, Vec3 a) { return a * s; }
 inline Vec3 operator/(Vec3 a, float s) { return a * (1.0f / s); }
+// A colour times a factor beyond float's range, the product within it: 1/f, f a grazing path's 1e-42.
+inline Vec3 scaled(Vec3 a, double s) { return {float(a.x * s), float(a.y * s), float(a.z * s)}; }
 inline Vec3& operator+=(Vec3& a, Vec3 b) { return a = a + b; }
 inline Vec3& operator*=(Vec3& a, Vec3 b) { return a = a * b; }
 inline Vec3& operator*=(Vec3& a, float s) { return a = a * s; }
@@ -2468,7 +2470,7 @@ inline bool joinPath(const Scene& scene, Subpath light, int s, Subpath camera, i
     }
     y.pixel = t == 1 ? pixel : pixelOf(scene.camera, y.x[k - 1].sp.p);
     float lum = luminance(C);
-    y.colour = C / lum;
+    y.colour = scaled(C, 1.0 / lum);
     y.f = lum * p;
     return y.pixel >= 0 && y.f > 0 && std::isfinite(y.f);
 }
@@ -2892,10 +2894,10 @@ inline void addChainSplats(MetropolisPass& mp, long long N, const std::vector<in
 // The expected-value splats of a state, weight h/f: a primary-sample state's, or a path's one pixel.
 inline void splatState(const PrimarySampleState& u, double weight, std::vector<Splat>& out) {
     for (const Splat& h : u.contributions)
-        if (!isBlack(h.value)) out.push_back({h.pixel, h.value * float(weight)});
+        if (!isBlack(h.value)) out.push_back({h.pixel, scaled(h.value, weight)});
 }
 inline void splatState(const MutatedPath& x, double weight, std::vector<Splat>& out) {
-    out.push_back({x.pixel, x.colour * float(x.f * weight)});
+    out.push_back({x.pixel, scaled(x.colour, x.f * weight)});
 }
 
 // One pass of a method's chains: W H mutations shared among them, each chain's splats kept apart
