@@ -1171,9 +1171,9 @@ struct SampleOptions {
     float largeStep = 0.3f;    // pssmlt, mmlt: probability of a large step (every number afresh)
     float sigma = 0.01f;       // pssmlt, mmlt: a small step's standard deviation, per number
     int bootstrap = 0;         // Metropolis: samples that estimate b and choose the chains' starts (0: bootstrapSamples)
-    int chains = 256;          // Metropolis: Markov chains, each its own random stream
+    int chains = 0;            // Metropolis: Markov chains, each its own random stream (0: chainCount)
     bool fixedStart = false;   // Metropolis: the deliberate mistake, every chain from one state
-    int mutations = 7;         // mlt: which of Veach's mutations run (bits: 1 bidirectional, 2 lens, 4 caustic)
+    int mutations = 15;        // mlt: which of Veach's mutations run (bits: 1 bidirectional, 2 lens, 4 caustic, 8 multi-chain)
     bool chainShortPaths = false;  // Metropolis: the chains render paths of 1 and 2 segments too (else a bdpt sample)
     int minDepth = 0;          // bdpt's connections: paths of fewer bounces are left out (the chains' own, above)
     Sampler sampler = Sampler::Sobol;  // every pixel sample's numbers (section 1)
@@ -2477,10 +2477,10 @@ inline bool joinPath(const Scene& scene, Subpath light, int s, Subpath camera, i
 
 // -- The bidirectional mutation. Veach's probabilities (1997, p. 347): delete kd edges with 1/4,
 // 1/2, then 2^-kd; add ka = kd with 1/2, kd +- 1 with 0.15, kd +- j with 0.2 * 2^-j; renormalised.
-inline double deletionWeight(int kd) { return kd == 1 ? 0.25 : kd == 2 ? 0.5 : std::ldexp(1.0, -kd); }
+inline double deletionWeight(int kd) { return kd == 1 ? 0.25 : kd == 2 ? 0.5 : 1.0 / double(1ull << std::min(kd, 63)); }
 inline double additionWeight(int ka, int kd) {
     int j = std::abs(ka - kd);
-    return j == 0 ? 0.5 : j == 1 ? 0.15 : 0.2 * std::ldexp(1.0, -j);
+    return j == 0 ? 0.5 : j == 1 ? 0.15 : 0.2 / double(1ull << std::min(j, 63));
 }
 
 // Path lengths (segments) the chain may visit.
@@ -2630,24 +2630,65 @@ inline int lensVertex(const Scene& scene, const MutatedPath& x) {
     return c >= 1 && connectable(scene, x.x[c]) && connectable(scene, x.x[c - 1]) ? c : -1;
 }
 
-inline double lensPerturbation(const Scene& scene, const MutatedPath& x, Rng& rng, MutatedPath& y) {
+// The multi-chain perturbation (Veach 1997, p. 357) goes on where the lens perturbation stops at a
+// diffuse vertex seen through mirrors or glass whose light also came through them (... D S+ D S* E,
+// and the light itself: L S+ D S* E, L S+ E): its walk ends at c, the first vertex from the camera
+// whose predecessor can be connected to, or at the light, hit (c = 0). -1: not such a path.
+inline int multiChainEnd(const Scene& scene, const MutatedPath& x) {
+    if (lensVertex(scene, x) >= 0) return -1;
+    int c = x.k();
+    do {
+        for (--c; c > 0 && !connectable(scene, x.x[c]); --c) {}
+    } while (c > 0 && !connectable(scene, x.x[c - 1]));
+    return c > 0 || (x.k() > 1 && !x.x[0].deltaPosition) ? c : -1;
+}
+
+// Both move the film point by an offset of density 1/R on [r1, r2] pixels, follow x's lobes to the
+// next diffuse vertex, and there (multi-chain) turn the direction toward the next one by an angle of
+// density 1/theta on Veach's fixed [1e-4, 0.1] degrees, until x_end, joined to x_{end-1}. Offset and
+// angles have the same density both ways; left is the walk's density of the new vertices: pE, but
+// after a turned direction only the solid angle's conversion to area, |cos| / d^2.
+inline double perturbedWalkDensity(const Scene& scene, const MutatedPath& x, int end) {
+    double p = 1;
+    for (int i = end; i < x.k(); ++i) {
+        Vec3 d = x.x[i + 1].sp.p - x.x[i].sp.p;
+        bool turned = i + 1 < x.k() && connectable(scene, x.x[i + 1]);
+        p *= turned ? cosAt(x.x[i], normalize(d)) / dot(d, d) : x.pE[i];
+    }
+    return p;
+}
+inline double chainPerturbation(const Scene& scene, const MutatedPath& x, int end, Rng& rng, MutatedPath& y) {
     thread_local std::vector<PathVertex> light, camera;
     const Camera& cam = scene.camera;
-    const int k = x.k(), c = lensVertex(scene, x);
+    const int k = x.k();
     float fx, fy;
-    if (c < 0 || !projectToFilm(cam, x.x[k - 1].sp.p, fx, fy)) return 0;
-    double r1, r2;
+    if (end < 0 || !projectToFilm(cam, x.x[k - 1].sp.p, fx, fy)) return 0;
+    double r1, r2, a1 = 1e-4 * kPi / 180, a2 = 0.1 * kPi / 180;
     lensRadii(cam, r1, r2);
     double R = r2 * std::exp(-std::log(r2 / r1) * rng.uniform()), phi = 2 * kPi * rng.uniform();
     float nx = float(fx + R * std::cos(phi)), ny = float(fy + R * std::sin(phi));
     if (!(nx >= 0 && nx < cam.width && ny >= 0 && ny < cam.height)) return 0;  // off the film: rejected, never wrapped
     camera.assign(1, pinholeVertex(scene));
-    if (!followLobes(scene, x, k, c, cameraRay(cam, nx, ny), Transport::Radiance, camera)) return 0;
-    subpathThrough(scene, x.x, c, Transport::Importance, light);
-    if (!joinPath(scene, light, c, camera, k - c + 1, y)) return 0;
-    double pOld = 1, pNew = 1;
-    for (int i = c; i < k; ++i) pOld *= x.pE[i], pNew *= y.pE[i];
-    return pNew > 0 ? (y.f / pNew) / (x.f / pOld) : 0;
+    Ray ray = cameraRay(cam, nx, ny);
+    for (int from = k, c = k - 1;; from = c--) {
+        while (c > end && !connectable(scene, x.x[c])) --c;
+        if (!followLobes(scene, x, from, c, ray, Transport::Radiance, camera)) return 0;
+        if (c == end) break;
+        double theta = a2 * std::exp(-std::log(a2 / a1) * rng.uniform()), turn = 2 * kPi * rng.uniform();
+        Vec3 w = Frame(normalize(x.x[c - 1].sp.p - x.x[c].sp.p))
+                     .toWorld(Vec3(float(std::sin(theta) * std::cos(turn)), float(std::sin(theta) * std::sin(turn)), float(std::cos(theta))));
+        ray = spawnRay(camera.back().sp, w);
+    }
+    subpathThrough(scene, x.x, end, Transport::Importance, light);
+    if (!joinPath(scene, light, end, camera, k - end + 1, y)) return 0;
+    double pNew = perturbedWalkDensity(scene, y, end);
+    return pNew > 0 ? (y.f / pNew) / (x.f / perturbedWalkDensity(scene, x, end)) : 0;
+}
+inline double lensPerturbation(const Scene& scene, const MutatedPath& x, Rng& rng, MutatedPath& y) {
+    return chainPerturbation(scene, x, lensVertex(scene, x), rng, y);
+}
+inline double multiChainPerturbation(const Scene& scene, const MutatedPath& x, Rng& rng, MutatedPath& y) {
+    return chainPerturbation(scene, x, multiChainEnd(scene, x), rng, y);
 }
 
 // The caustic perturbation applies to paths ending (L|D) S* D E: l, where the chain S* starts.
@@ -2706,12 +2747,13 @@ inline double causticPerturbation(const Scene& scene, const MutatedPath& x, Rng&
 }
 
 // The mutations that apply to x (the bidirectional one always), each chosen with probability 1/count.
-enum MutationBits { kBidirectional = 1, kLens = 2, kCaustic = 4 };
+enum MutationBits { kBidirectional = 1, kLens = 2, kCaustic = 4, kMultiChain = 8 };
 inline int applicableMutations(const Scene& scene, const MutatedPath& x, int enabled) {
     return (enabled & kBidirectional) | (enabled & kLens && lensVertex(scene, x) >= 0 ? kLens : 0) |
-           (enabled & kCaustic && causticVertex(scene, x) >= 0 ? kCaustic : 0);
+           (enabled & kCaustic && causticVertex(scene, x) >= 0 ? kCaustic : 0) |
+           (enabled & kMultiChain && multiChainEnd(scene, x) >= 0 ? kMultiChain : 0);
 }
-inline int bitCount(int bits) { return (bits & 1) + (bits >> 1 & 1) + (bits >> 2 & 1); }
+inline int bitCount(int bits) { return (bits & 1) + (bits >> 1 & 1) + (bits >> 2 & 1) + (bits >> 3 & 1); }
 
 // One proposal from x and its acceptance a(y|x), the choice of the mutation counted both ways.
 inline double mutate(const Scene& scene, const SampleOptions& walk, LengthRange r, const MutatedPath& x, Rng& rng, MutatedPath& y, int* which = nullptr) {
@@ -2723,7 +2765,8 @@ inline double mutate(const Scene& scene, const SampleOptions& walk, LengthRange 
     if (which) *which = bit;
     double ratio = bit == kBidirectional ? bidirectionalMutation(scene, walk, r, x, rng, y)
                    : bit == kLens        ? lensPerturbation(scene, x, rng, y)
-                                         : causticPerturbation(scene, x, rng, y);
+                   : bit == kCaustic     ? causticPerturbation(scene, x, rng, y)
+                                         : multiChainPerturbation(scene, x, rng, y);
     if (!(ratio > 0) || !std::isfinite(ratio)) return 0;
     return std::min(1.0, ratio * count / bitCount(applicableMutations(scene, y, walk.mutations)));
 }
@@ -2734,7 +2777,7 @@ struct PathChain {
     MutatedPath current, proposal;
     double currentWeight = 0;
     long long accepted = 0, proposed = 0;
-    long long acceptedBy[3] = {0, 0, 0}, proposedBy[3] = {0, 0, 0};  // per mutation: bidirectional, lens, caustic
+    long long acceptedBy[4] = {0, 0, 0, 0}, proposedBy[4] = {0, 0, 0, 0};  // per mutation: bidirectional, lens, caustic, multi-chain
 };
 
 // -- The three Metropolis methods' passes. Paths of one and two segments (direct light, the lamp
@@ -2768,8 +2811,12 @@ struct MetropolisPass {
 // lengths: a length the bootstrap leaves dark gets no chain, and one that a single strategy finds
 // (sds's lamp through glass, s = 0 only) needs tens of thousands to be seen (notes, page 17).
 inline int bootstrapSamples(const SampleOptions& opt) {
-    return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::PSSMLT ? 100000 : 1000000;
+    return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::PSSMLT ? 100000 : opt.method == Method::MLT ? 200000 : 1000000;
 }
+// mlt's chains make one path's move each, where pssmlt's splat a whole bdpt sample: more and
+// shorter chains spread its starts (drawn as f) over the image (measured: 1,024 over 256 halves
+// the error on the glass scenes at 256 mutations per pixel; see the notes' Metropolis page).
+inline int chainCount(const SampleOptions& opt) { return opt.chains > 0 ? opt.chains : opt.method == Method::MLT ? 1024 : 256; }
 
 // Independent numbers, whatever --sampler: mmlt deals them to the lengths by index (every L-th Sobol point is uneven).
 inline Rng bootstrapRng(const SampleOptions& opt, int sample, int stream) {
@@ -2853,7 +2900,7 @@ inline int firstLitSample(const std::vector<double>& f) {
 // pssmlt's and mmlt's first pass: b from the bootstrap, and each chain's start drawn in proportion to f.
 inline void startPrimarySampleChains(const Scene& scene, const SampleOptions& opt, int threads, MetropolisPass& mp) {
     const int n = bootstrapSamples(opt), lengths = lengthCount(opt);
-    mp.chains.assign(std::max(1, opt.chains), PrimarySampleChain());
+    mp.chains.assign(chainCount(opt), PrimarySampleChain());
     if (lengths == 0) return;  // --maxdepth leaves the chains no path: b = 0, the image is bdpt's short paths
     std::vector<double> f = bootstrapValues(n, threads, [&](int i) {
         thread_local PrimarySampleState u;
@@ -2877,13 +2924,16 @@ inline void startPrimarySampleChains(const Scene& scene, const SampleOptions& op
     }
 }
 
-inline long long mutationsOfChain(long long N, long long C, long long c) { return N / C + (c < N % C); }
+// A pass's N mutations over C chains: N / C each, and one more for N % C of them, in turn by pass.
+inline long long mutationsOfChain(long long N, long long C, long long c, int pass) {
+    return N / C + ((c + C - pass * (N % C) % C) % C < N % C);
+}
 
 // The pass's image from the chains' splats, in chain order, scaled by b (mmlt: b_k N / M_k per length).
-inline void addChainSplats(MetropolisPass& mp, long long N, const std::vector<int>& lengthOfChain) {
+inline void addChainSplats(MetropolisPass& mp, long long N, int pass, const std::vector<int>& lengthOfChain) {
     const long long C = (long long)lengthOfChain.size();
     std::vector<double> scale(mp.fByLength.size(), 0), done(mp.fByLength.size(), 0);
-    for (long long c = 0; c < C; ++c) done[lengthOfChain[c]] += double(mutationsOfChain(N, C, c));
+    for (long long c = 0; c < C; ++c) done[lengthOfChain[c]] += double(mutationsOfChain(N, C, c, pass));
     for (size_t k = 0; k < scale.size(); ++k)
         scale[k] = done[k] > 0 ? (scale.size() > 1 ? mp.lengthB(int(k)) : mp.b) * double(N) / done[k] : 0;
     mp.image.assign(size_t(N), Vec3(0));
@@ -2903,7 +2953,7 @@ inline void splatState(const MutatedPath& x, double weight, std::vector<Splat>& 
 // One pass of a method's chains: W H mutations shared among them, each chain's splats kept apart
 // (added in chain order: the image does not depend on --threads); step(chain, splat) makes one.
 template <class Chain, class Step>
-inline void mutateChains(std::vector<Chain>& chains, MetropolisPass& mp, long long N, int threads, const Step& step) {
+inline void mutateChains(std::vector<Chain>& chains, MetropolisPass& mp, long long N, int pass, int threads, const Step& step) {
     const long long C = (long long)chains.size();
     mp.chainSplats.resize(size_t(C));
     parallelRows(int(C), threads, [&](int c) {
@@ -2912,7 +2962,7 @@ inline void mutateChains(std::vector<Chain>& chains, MetropolisPass& mp, long lo
         out.clear();
         if (!(chain.current.f > 0)) return;  // its start found no path (mlt)
         auto splat = [&](const auto& state, double weight) { splatState(state, weight, out); };
-        for (long long i = 0, n = mutationsOfChain(N, C, c); i < n; ++i) step(chain, splat);
+        for (long long i = 0, n = mutationsOfChain(N, C, c, pass); i < n; ++i) step(chain, splat);
         splat(chain.current, chain.currentWeight);
         chain.currentWeight = 0;
     });
@@ -2925,14 +2975,14 @@ inline void tracePrimarySamplePass(const Scene& scene, const SampleOptions& opt,
     mp.image.assign(size_t(N), Vec3(0));
     if (!(mp.b > 0)) return;
     const SampleOptions chainOpt = chainOptions(opt);
-    mutateChains(mp.chains, mp, N, threads, [&](PrimarySampleChain& chain, const auto& splat) {
+    mutateChains(mp.chains, mp, N, pass, threads, [&](PrimarySampleChain& chain, const auto& splat) {
         auto evaluate = [&](PrimarySampleState& u) { evaluateState(scene, chainOpt, u, chain.rng, chain.rng, chain.rng); };
         metropolisStep(opt, chain, evaluate, splat);
     });
     std::vector<int> lengthOfChain(mp.chains.size(), 0);  // mmlt: its length's index; pssmlt: one b
     for (size_t c = 0; c < mp.chains.size(); ++c)
         if (opt.method == Method::MMLT) lengthOfChain[c] = mp.chains[c].current.length - shortestChainPath(opt);
-    addChainSplats(mp, N, lengthOfChain);
+    addChainSplats(mp, N, pass, lengthOfChain);
     for (size_t c = 0; c < mp.chains.size(); ++c) {  // the next pass's b, with this pass's large steps
         mp.fByLength[lengthOfChain[c]].add(mp.chains[c].largeSteps);
         mp.chains[c].largeSteps = FSum();
@@ -2979,7 +3029,7 @@ inline void startPathChains(const Scene& scene, const SampleOptions& opt, int th
     mp.fByLength.assign(1, FSum());
     for (double x : f) mp.fByLength[0].add(x);
     estimateB(mp);
-    mp.paths.assign(std::max(1, opt.chains), PathChain());
+    mp.paths.assign(chainCount(opt), PathChain());
     if (!(mp.b > 0)) return;
     std::vector<double> cdf(n);
     std::partial_sum(f.begin(), f.end(), cdf.begin());
@@ -3003,16 +3053,16 @@ inline void tracePathPass(const Scene& scene, const SampleOptions& opt, int pass
     if (!(mp.b > 0)) return;
     const SampleOptions walk = chainOptions(opt);
     const LengthRange lengths{shortestChainPath(opt), opt.maxDepth + 1};
-    mutateChains(mp.paths, mp, N, threads, [&](PathChain& chain, const auto& splat) {
+    mutateChains(mp.paths, mp, N, pass, threads, [&](PathChain& chain, const auto& splat) {
         int which = 0;
         double a = mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal, &which);
         long long before = chain.accepted;
         splatAndAccept(chain, a, splat);
-        int m = which == kBidirectional ? 0 : which == kLens ? 1 : 2;
+        int m = which == kBidirectional ? 0 : which == kLens ? 1 : which == kCaustic ? 2 : 3;
         ++chain.proposedBy[m];
         chain.acceptedBy[m] += chain.accepted - before;
     });
-    addChainSplats(mp, N, std::vector<int>(mp.paths.size(), 0));
+    addChainSplats(mp, N, pass, std::vector<int>(mp.paths.size(), 0));
 }
 
 // The options of the bdpt sample per pixel: paths of one and two segments.
@@ -3670,8 +3720,8 @@ struct ArgReader {
         int bits = 0;
         std::istringstream in(v);
         while (std::getline(in, word, ','))
-            bits |= word == "bidir" ? kBidirectional : word == "lens" ? kLens : word == "caustic" ? kCaustic
-                  : (fail("unknown mutation '" + printable(word) + "' in " + name + " (bidir, lens, caustic)"), 0);
+            bits |= word == "bidir" ? kBidirectional : word == "lens" ? kLens : word == "caustic" ? kCaustic : word == "multichain" ? kMultiChain
+                  : (fail("unknown mutation '" + printable(word) + "' in " + name + " (bidir, lens, caustic, multichain)"), 0);
         if (!(bits & kBidirectional)) fail(name + " needs bidir: only the bidirectional mutation changes a path's length or kind");
         return bits;
     }
@@ -3727,9 +3777,9 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      [](CL& cl, A& a) { cl.opt.sigma = float(a.number(1e-6, 10)); }},
     {"--bootstrap", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: samples that estimate b and choose the chains' starts",
      [](CL& cl, A& a) { cl.opt.bootstrap = int(a.integer(1, 1e8)); }},
-    {"--chains", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: Markov chains, each its own random stream (default 256)",
+    {"--chains", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: Markov chains, each its own random stream (default 1024 for mlt, 256 otherwise)",
      [](CL& cl, A& a) { cl.opt.chains = int(a.integer(1, 1e6)); }},
-    {"--mutations", "LIST", {Method::MLT}, "--method mlt", "mlt: Veach's mutations among bidir, lens, caustic (default all three)",
+    {"--mutations", "LIST", {Method::MLT}, "--method mlt", "mlt: Veach's mutations among bidir, lens, caustic, multichain (default all four)",
      [](CL& cl, A& a) { cl.opt.mutations = a.mutationList(); }},
     {"--chain-short-paths", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: the chains render paths of one and two segments too",
      [](CL& cl, A&) { cl.opt.chainShortPaths = true; }},

@@ -216,7 +216,7 @@ inline const std::map<std::string, const char*> kFullHelp = {
      "vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)\n"
      "mlt  (see later) Metropolis light transport (Veach's): Markov chains of\n"
      "     paths, mutated by replacing a few vertices (bidirectional mutation) or\n"
-     "     by moving them a little (lens and caustic perturbations);\n"
+     "     by moving them a little (lens, caustic, multi-chain perturbations);\n"
      "     --spp N means N mutations per pixel on average\n"
      "pssmlt (see later) primary-sample-space MLT (Kelemen's): chains that mutate\n"
      "     the random numbers of bdpt's whole sample\n"
@@ -238,10 +238,10 @@ inline const std::map<std::string, const char*> kFullHelp = {
     {"--bootstrap",
      "mlt, pssmlt, mmlt: independent samples that estimate the image's\n"
      "normalisation b and choose the chains' starts in proportion to their\n"
-     "brightness (default 100000 for pssmlt, 1000000 for mlt and mmlt; mmlt\nspreads them over the path lengths)"},
+     "brightness (default 100000 for pssmlt, 200000 for mlt, 1000000 for mmlt,\nwhich spreads them over the path lengths)"},
     {"--mutations",
-     "mlt: Veach's mutations to use, among bidir, lens and caustic, comma-\n"
-     "separated; bidir is always among them (default bidir,lens,caustic)"},
+     "mlt: Veach's mutations to use, among bidir, lens, caustic and multichain,\n"
+     "comma-separated; bidir is always among them (default: all four)"},
     {"--chain-short-paths",
      "mlt, pssmlt, mmlt: the chains render paths of one and two segments too\n"
      "(by default a bdpt sample per pixel renders them, and the chains the rest)"},
@@ -815,22 +815,22 @@ inline void printMethodSummary(const ClassroomLine& cl, const Scene& scene, cons
         out << text;
     }
     const MetropolisPass& mp = r.method.metropolis;
-    long long accepted = 0, proposed = 0, acceptedBy[3] = {0, 0, 0}, proposedBy[3] = {0, 0, 0};
+    long long accepted = 0, proposed = 0, acceptedBy[4] = {0, 0, 0, 0}, proposedBy[4] = {0, 0, 0, 0};
     for (const PrimarySampleChain& c : mp.chains) accepted += c.accepted, proposed += c.proposed;
     for (const PathChain& c : mp.paths) {
         accepted += c.accepted, proposed += c.proposed;
-        for (int m = 0; m < 3; ++m) acceptedBy[m] += c.acceptedBy[m], proposedBy[m] += c.proposedBy[m];
+        for (int m = 0; m < 4; ++m) acceptedBy[m] += c.acceptedBy[m], proposedBy[m] += c.proposedBy[m];
     }
     if (isMetropolis(cl.opt.method)) {
         std::snprintf(text, sizeof text, "%s: b = %.6g +- %.2g (bootstrap of %d samples); %d chains accepted %.1f%% of %lld mutations\n",
-                      methodName(cl.opt.method), mp.b, mp.bStandardError, bootstrapSamples(cl.opt), cl.opt.chains,
+                      methodName(cl.opt.method), mp.b, mp.bStandardError, bootstrapSamples(cl.opt), chainCount(cl.opt),
                       100.0 * double(accepted) / double(std::max(1LL, proposed)), proposed);
         out << text;
     }
     if (cl.opt.method == Method::MLT) {
         out << "mlt: accepted";
-        const char* names[3] = {"bidirectional", "lens", "caustic"};
-        for (int m = 0; m < 3; ++m) {
+        const char* names[4] = {"bidirectional", "lens", "caustic", "multi-chain"};
+        for (int m = 0; m < 4; ++m) {
             std::snprintf(text, sizeof text, "%s %s %.1f%% of %lld", m ? "," : "", names[m],
                           100.0 * double(acceptedBy[m]) / double(std::max(1LL, proposedBy[m])), proposedBy[m]);
             out << text;

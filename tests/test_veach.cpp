@@ -383,6 +383,65 @@ static double glassLobe(const Scene& scene, const MutatedPath& x, int i) {
     return reflects ? F : 1 - F;
 }
 
+// The multi-chain perturbation moves the film point u as the lens perturbation does and turns the
+// direction at each diffuse vertex c_j whose light came through a mirror or glass by a symmetric
+// angle, so its acceptance is pi(y)/pi(x), pi = f |d(diffuse vertices)/d(u, w_1..w_m)|. Through a
+// specular chain from a to b, f's generalized geometric term is |cos_a| |dw_a/dA_b|: it cancels the
+// Jacobian's |dA_b/dw_a|, and at the film the pinhole's importance cancels |dA/du|. Left, written
+// out here: Le and the BSDF values (albedo/pi, the mirror's reflectance, glass's F or 1 - F), the cosine
+// at each turned vertex toward its light, and the geometric term of the final connection.
+static double multiChainTarget(const Scene& scene, const MutatedPath& p, int end) {
+    Vec3 colour = scene.shapes[p.x[0].sp.shape].emission;  // a colour: f's luminance is taken of the product
+    double scalar = 1;
+    for (int i = 1; i < p.k(); ++i) {
+        const Material& m = scene.materials[scene.shapes[p.x[i].sp.shape].material];
+        colour = colour * (m.type == Material::Diffuse ? m.albedo / float(kPi) : m.type == Material::Mirror ? m.albedo : Vec3(1));
+        scalar *= glassLobe(scene, p, i);
+        bool turned = i > end && m.type == Material::Diffuse &&
+                      scene.materials[scene.shapes[p.x[i - 1].sp.shape].material].type != Material::Diffuse;
+        if (turned) scalar *= std::fabs(dot(p.x[i].sp.ng, normalize(p.x[i - 1].sp.p - p.x[i].sp.p)));
+    }
+    if (end > 0) {
+        Vec3 d = p.x[end - 1].sp.p - p.x[end].sp.p;
+        double cosA = std::fabs(dot(p.x[end].sp.ng, normalize(d)));
+        double cosB = p.x[end - 1].deltaPosition ? 1 : std::fabs(dot(p.x[end - 1].sp.ng, normalize(d)));
+        scalar *= cosA * cosB / dot(d, d);
+    }
+    return luminance(colour) * scalar;
+}
+
+TEST_CASE("the multi-chain perturbation's acceptance is that of its moves on the film and the spheres of directions") {
+    Scene scene = sceneAt("scenes/cornell-glass.scene", 32, 32);
+    RenderOptions opt = quietOptions(Method::MLT, 1);
+    opt.chainShortPaths = true;
+    std::vector<MutatedPath> starts;
+    for (const MutatedPath& x : startPaths(scene, opt, 4000))
+        if (multiChainEnd(scene, x) >= 0) starts.push_back(x);
+    Rng rng = makeRng(11, 0, 0);
+    int compared = 0, agree = 0, fOnlyOff = 0, lightHit = 0, turns = 0;
+    for (const MutatedPath& x : starts)
+        for (int proposal = 0; proposal < 8; ++proposal) {
+            MutatedPath y;
+            double ratio = multiChainPerturbation(scene, x, rng, y);
+            if (!(ratio > 0)) continue;
+            const int end = multiChainEnd(scene, x);
+            double expected = multiChainTarget(scene, y, end) / multiChainTarget(scene, x, end);
+            ++compared;
+            agree += std::fabs(ratio / expected - 1) < 2e-5;
+            fOnlyOff += std::fabs(y.f / x.f / expected - 1) > 1e-2;
+            lightHit += end == 0;
+            for (int i = end + 1; i < x.k(); ++i) turns += connectable(scene, x.x[i]);
+        }
+    MESSAGE("multi-chain: " << starts.size() << " paths, " << compared << " proposals (" << lightHit << " ending on the light, "
+                            << turns << " turned vertices); " << agree << " within 2e-5 of the written-out ratio; " << fOnlyOff
+                            << " off by > 1% with f(y)/f(x) alone");
+    CHECK(compared > 300);
+    CHECK(lightHit > 30);
+    CHECK(turns > 100);
+    CHECK(agree >= 0.99 * compared);  // the walk's pE at a turned vertex (its BSDF's density of the angle): 544 of 1,076
+    CHECK(fOnlyOff > compared / 10);
+}
+
 // The target f at a glass vertex carries the probability of the lobe the path took there: F where
 // the path reflects, 1 - F where it refracts, F the dielectric's Fresnel reflectance for the angle
 // the path makes with the normal (written out here from Fresnel's equations). With F for both
