@@ -136,7 +136,7 @@ help:
 	@echo "make uneven     bdpt, mlt, pssmlt and mmlt per region on the door: build/uneven-door.png (about 1 minute)"
 	@echo "make charts     error against time, every method and scene, and both samplers, 1.5 s a run: build/charts/ (about 5 minutes)"
 	@echo "make efficiency 1/(MSE x CPU-s) of every method, 64 samples, 2 seeds: build/efficiency.md (about 3 minutes)"
-	@echo "make metropolis mlt, pssmlt and mmlt against bdpt, 8 seeds, two sizes: build/metropolis.md (about 45 minutes)"
+	@echo "make metropolis mlt, pssmlt and mmlt against bdpt, 8 seeds, two sizes: build/metropolis.md; mlt's mutations: build/mutations.md (about 50 minutes)"
 	@echo "make bench      our BVH against Embree, cost per sample and where it goes: printed only (about 4 minutes)"
 	@echo "                FULL=1 after charts, efficiency or bench: the notes' budgets (12, 25 and 15 minutes)"
 	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 50 minutes)"

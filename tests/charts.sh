@@ -99,7 +99,7 @@ methods() {
 # differ least after equal time), so the reference beats every charted run by the widest margin.
 refMethod() {
   case $1 in
-    cornell|indirect|door) echo lt ;;  # diffuse and glossy: one light path lands on many pixels
+    cornell|indirect|door|door-side) echo lt ;;  # diffuse and glossy: one light path lands on many pixels
     shading-normals) echo nee ;;       # lt's adjoint factor at grazing shading normals makes rare huge splats:
                                        # one seed of 2 x 90 s carried a pixel 40 times too bright
     door-hidden) echo mlt ;;                      # every visible path passes the hidden gap
@@ -133,7 +133,7 @@ refs() {
   local csv=scenes/refs/refs.csv row
   [ -f $csv ] || echo "scene,method,seconds_per_seed,spp_seed1,spp_seed2,rmse_between_seeds,relmse_between_seeds,rmse_without_lamp_between_seeds" > $csv
   local list=$SCENES
-  [ "$SCENES" != "$ALL_SCENES" ] || list="$ALL_SCENES door-hidden"
+  [ "$SCENES" != "$ALL_SCENES" ] || list="$ALL_SCENES door-hidden door-side"
   for s in $list; do
     if [ "$s" = furnace ]; then
       furnaceReference scenes/refs/furnace.pfm
@@ -260,15 +260,20 @@ efficiency() {
 }
 
 # make metropolis (tests/efficiency.cpp --metropolis): the Markov chains against bdpt, 8 seeds, into
-# build/metropolis.md; with NOTES=1 also lecture_notes/figures/metropolis.md, spliced into page 17.
+# build/metropolis.md, and Veach's table of mlt's mutations (--mutations) into build/mutations.md;
+# with NOTES=1 also lecture_notes/figures/metropolis.md and mutations.md, spliced into page 17.
 metropolisTable() {
   make -s build/efficiency
-  echo "metropolis: 8 seeds of bdpt, mlt, pssmlt and mmlt on door-hidden and cornell, one thread: about 45 minutes"
-  ./build/efficiency --metropolis --seeds 8 --scenes door-hidden,cornell > build/metropolis.md.tmp && mv build/metropolis.md.tmp build/metropolis.md
+  echo "metropolis: 8 seeds of bdpt, mlt, pssmlt and mmlt on door-hidden, door-side and cornell, one thread: about 50 minutes"
+  ./build/efficiency --mutations --scenes cornell-glass,glass-box,indirect,door,door-side > build/mutations.md.tmp && mv build/mutations.md.tmp build/mutations.md
+  cat build/mutations.md
+  ./build/efficiency --metropolis --seeds 8 --scenes door-hidden,door-side,cornell > build/metropolis.md.tmp && mv build/metropolis.md.tmp build/metropolis.md
   cat build/metropolis.md
   [ -n "$NOTES" ] || return 0
   cp build/metropolis.md "$FIG/metropolis.md"
+  cp build/mutations.md "$FIG/mutations.md"
   splice "$FIG/metropolis.md" lecture_notes/17-veach-mutations.md metropolis
+  splice "$FIG/mutations.md" lecture_notes/17-veach-mutations.md mutations
 }
 
 plots() {  # the charts again from the runs' logs, without rendering (after a change of style)

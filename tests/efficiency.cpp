@@ -9,7 +9,7 @@
 // bdpt.cpp: their noise is the pixel filter's, the same for every camera-path method).
 // The table gives medians over the seeds, the efficiency 1/(MSE x CPU-s) relative to nee --mis,
 // and the share of the squared error in the pixels that see a mirror or glass (seesSpecular).
-//   build/efficiency [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT] [--metropolis]
+//   build/efficiency [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT] [--metropolis] [--mutations]
 // --alternatives adds the Russian roulette variants (the measurements behind the choice in
 // bdpt's banner); --only keeps the methods whose label contains TEXT, or any of a comma-separated
 // list (and nee --mis, the baseline): --only "pt,nee,bdpt" gives both samplers of those.
@@ -172,9 +172,85 @@ static int metropolis(int seeds, const std::vector<std::string>& scenes, const s
     return 0;
 }
 
+// --mutations: Veach's table of mlt's mutations per scene, at the references' resolution: from the
+// bootstrap's 1,024 starts, 256 proposals per chain, each mutation's share of the proposals, its
+// acceptance, the mean distance on the film its accepted proposals move the path (pixels,
+// weighted by the acceptance a) and its time per proposal (CPU of this thread, measured around each
+// call); then mutations per CPU-second of whole mlt and pssmlt renders (64 per pixel, bootstrap in),
+// and how many splats a mutation leaves on the film: one path's for mlt, a whole bdpt sample's
+// strategies for pssmlt (a proposal's and, when it is left, the current state's).
+static int mutationTable(const std::vector<std::string>& scenes) {
+    const char* names[4] = {"bidirectional", "lens", "caustic", "multi-chain"};
+    std::printf("| scene | mutation | share of proposals | accepted | mean move of the accepted (pixels) | us per proposal |\n"
+                "|---|---|---|---|---|---|\n");
+    std::vector<std::string> rates;
+    for (const std::string& name : scenes) {
+        Scene scene;
+        Image ref;
+        if (!sceneWithReference(name, scene, ref)) return 2;
+        RenderOptions o = with(Method::MLT);
+        MetropolisPass mp;
+        startPathChains(scene, o, 1, mp);
+        const SampleOptions walk = chainOptions(o);
+        const LengthRange lengths{shortestChainPath(o), o.maxDepth + 1};
+        double proposed[4] = {}, accepted[4] = {}, moved[4] = {}, seconds[4] = {}, all = 0;
+        const int W = scene.camera.width;
+        for (PathChain& chain : mp.paths) {
+            if (!(chain.current.f > 0)) continue;
+            for (int i = 0; i < 256; ++i) {
+                int which = 0;
+                double t0 = threadCpuSeconds();
+                double a = mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal, &which);
+                int m = which == kBidirectional ? 0 : which == kLens ? 1 : which == kCaustic ? 2 : 3;
+                seconds[m] += threadCpuSeconds() - t0;
+                ++proposed[m], ++all;
+                if (a > 0) {
+                    int p = chain.current.pixel, q = chain.proposal.pixel;
+                    accepted[m] += a;
+                    moved[m] += a * std::hypot(double(p % W - q % W), double(p / W - q / W));
+                }
+                if (chain.rng.uniform() < a) std::swap(chain.current, chain.proposal);
+            }
+        }
+        for (int m = 0; m < 4; ++m)
+            if (proposed[m] > 0)
+                std::printf("| %s | %s | %.0f%% | %.1f%% | %.2f | %.2f |\n", name.c_str(), names[m], 100 * proposed[m] / all,
+                            100 * accepted[m] / proposed[m], accepted[m] > 0 ? moved[m] / accepted[m] : 0.0, 1e6 * seconds[m] / proposed[m]);
+        char line[200];
+        double rate[2];
+        for (Method method : {Method::MLT, Method::PSSMLT}) {
+            RenderOptions r = with(method);
+            r.spp = 64;
+            double c0 = threadCpuSeconds();
+            render(scene, r);
+            rate[method == Method::PSSMLT] = 64.0 * ref.width * ref.height / (threadCpuSeconds() - c0);
+        }
+        double splats[2];  // splats per mutation over 4 passes: what one mutation brings to the image
+        for (Method method : {Method::MLT, Method::PSSMLT}) {
+            RenderOptions r = with(method);
+            MetropolisPass pass;
+            double count = 0;
+            for (int k = 0; k < 4; ++k) {
+                if (method == Method::MLT) tracePathPass(scene, r, k, 1, pass);
+                else tracePrimarySamplePass(scene, r, k, 1, pass);
+                for (const std::vector<Splat>& c : pass.chainSplats) count += double(c.size());
+            }
+            splats[method == Method::PSSMLT] = count / (4.0 * ref.width * ref.height);
+        }
+        std::snprintf(line, sizeof line, "| %s | %.0f | %.0f | %.2fx | %.2f | %.2f |", name.c_str(), rate[0], rate[1], rate[0] / rate[1],
+                      splats[0], splats[1]);
+        rates.push_back(line);
+        std::fflush(stdout);
+    }
+    std::printf("\nMutations per CPU-second of whole renders (64 per pixel, one thread, the bootstrap and the bdpt sample of the short paths included):\n\n"
+                "| scene | mlt | pssmlt | mlt / pssmlt | mlt's splats per mutation | pssmlt's |\n|---|---|---|---|---|---|\n");
+    for (const std::string& line : rates) std::printf("%s\n", line.c_str());
+    return 0;
+}
+
 int main(int argc, char** argv) {
     int spp = 256, seeds = 4;
-    bool alternatives = false, metropolisRows = false;
+    bool alternatives = false, metropolisRows = false, mutationRows = false;
     std::string only;
     std::vector<std::string> scenes = {"cornell", "cornell-glass", "indirect", "glass-box", "sds-ior1", "door"};
     for (int i = 1; i < argc; ++i) {
@@ -183,18 +259,20 @@ int main(int argc, char** argv) {
         else if (a == "--seeds" && i + 1 < argc) seeds = std::atoi(argv[++i]);
         else if (a == "--alternatives") alternatives = true;
         else if (a == "--metropolis") metropolisRows = true;
+        else if (a == "--mutations") mutationRows = true;
         else if (a == "--only" && i + 1 < argc) only = argv[++i];
         else if (a == "--scenes" && i + 1 < argc) {
             scenes.clear();
             std::stringstream list(argv[++i]);
             for (std::string s; std::getline(list, s, ',');) scenes.push_back(s);
         } else {
-            std::fprintf(stderr, "usage: %s [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT] [--metropolis]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--spp N] [--seeds K] [--scenes a,b,...] [--alternatives] [--only TEXT] [--metropolis] [--mutations]\n", argv[0]);
             return 2;
         }
     }
     if (spp < 1 || seeds < 1) { std::fprintf(stderr, "efficiency: --spp and --seeds must be at least 1\n"); return 2; }
     if (metropolisRows) return metropolis(seeds, scenes, only);
+    if (mutationRows) return mutationTable(scenes);
     std::vector<Variant> runs;
     for (const Variant& v : variants(alternatives))
         if (selected(v.label, only) || v.label == "nee --mis") runs.push_back(v);
