@@ -2806,10 +2806,11 @@ struct MetropolisPass {
     double lengthB(int i) const { return fByLength[i].count > 0 ? fByLength[i].sum / fByLength[i].count : 0; }
 };
 
-// The bootstrap's size: 100,000 samples for pssmlt, ten times as many for mlt, whose b comes from
-// its bootstrap alone and scales the whole image, and mmlt, which spreads them over the path
-// lengths: a length the bootstrap leaves dark gets no chain, and one that a single strategy finds
-// (sds's lamp through glass, s = 0 only) needs tens of thousands to be seen (notes, page 17).
+// The bootstrap's size: 100,000 samples for pssmlt; 200,000 for mlt, whose b comes from its
+// bootstrap alone and scales the whole image (a tenth of a 4-second run at 64x64); 1,000,000 for
+// mmlt, which spreads them over the path lengths: a length the bootstrap leaves dark gets no chain,
+// and one that a single strategy finds (sds's lamp through glass, s = 0 only) needs tens of
+// thousands to be seen (notes, page 17).
 inline int bootstrapSamples(const SampleOptions& opt) {
     return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::PSSMLT ? 100000 : opt.method == Method::MLT ? 200000 : 1000000;
 }
