@@ -171,6 +171,8 @@ inline std::map<std::string, std::vector<OptionRow<CR>>> toolRows() {
         {"--help", {{nullptr, "", {}, "",
            "Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;\n"
            "a second Ctrl-C (a second or more after the first) abandons the render: no file, status 3.\n"
+           "A render of a million pixels or more first says how long a pass will take (from a\n"
+           "64x64 pass of the same scene and options).\n"
            "Speed against accuracy", nullptr},
           {"--ref", "FILE.pfm", {}, "",
            "reference image (same resolution): after every pass compute RMSE, relMSE,\n"
@@ -918,6 +920,7 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     if (cl.liveSeconds > 0)  // a first frame at once: a viewer opens it, and never shows an older run's image
         savePNG(Image(scene.camera.width, scene.camera.height), cl.out, 0);
     warnAboutScene(scene, cl.opt, err);
+    warnAboutDuration(cl, scene, err);
     return renderOne(cl, scene, ref, out, err);
 }
 
