@@ -13,6 +13,13 @@
 
 // threadCpuSeconds(): the renderer's (--profile's clock).
 
+// A long harness's progress: redrawn in place on a terminal, left out of a log file (where
+// carriage returns would pile up on one line).
+inline bool progressShown() {
+    static const bool terminal = isatty(2);
+    return terminal;
+}
+
 // scenes/NAME.scene at the resolution of its reference scenes/refs/NAME.pfm (make efficiency,
 // make uneven); false, with the reason on stderr, if either cannot be read.
 inline bool sceneWithReference(const std::string& name, Scene& scene, Image& ref) {

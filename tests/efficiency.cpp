@@ -156,9 +156,9 @@ static int metropolis(int seeds, const std::vector<std::string>& scenes, const s
                     cpu[v].push_back(threadCpuSeconds() - c0);
                     mse[v].push_back(maskedMse(r.image, ref));
                     mean[v].push_back(imageMean(r.image));
-                    std::fprintf(stderr, "\r%s %dx%d: seed %d/%d, %zu/%zu   ", name.c_str(), size.width, size.width, seed, seeds, v + 1, variants);
+                    if (progressShown()) std::fprintf(stderr, "\r%s %dx%d: seed %d/%d, %zu/%zu   ", name.c_str(), size.width, size.width, seed, seeds, v + 1, variants);
                 }
-            std::fprintf(stderr, "\r%60s\r", "");
+            if (progressShown()) std::fprintf(stderr, "\r%60s\r", "");
             double base = 1 / (median(mse[0]) * median(cpu[0])), refMean = imageMean(ref);
             for (size_t v = 0; v < variants; ++v) {
                 double m = median(mse[v]), c = median(cpu[v]), average = 0;
@@ -296,9 +296,9 @@ int main(int argc, char** argv) {
                 mse[v].push_back(maskedMse(r.image, ref));
                 share[v].push_back(specularShare(r.image, ref, specularPixels));
                 rays[v].push_back(double(r.rays.closest + r.rays.shadow) / (double(r.passes) * ref.width * ref.height));
-                std::fprintf(stderr, "\r%s: seed %d/%d, %zu/%zu   ", name.c_str(), seed, seeds, v + 1, runs.size());
+                if (progressShown()) std::fprintf(stderr, "\r%s: seed %d/%d, %zu/%zu   ", name.c_str(), seed, seeds, v + 1, runs.size());
             }
-        std::fprintf(stderr, "\r%60s\r", "");
+        if (progressShown()) std::fprintf(stderr, "\r%60s\r", "");
         double baseline = 0;
         for (size_t v = 0; v < runs.size(); ++v)
             if (runs[v].label == "nee --mis") baseline = 1 / (median(mse[v]) * median(cpu[v]));

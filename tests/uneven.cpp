@@ -50,9 +50,9 @@ int main(int argc, char** argv) {
             for (int y = 0; y < H; ++y)
                 for (int x = 0; x < W; ++x)
                     for (int c = 0; c < 3; ++c) squared[m][region(x, y)] += sqr(double(r.image.at(x, y)[c]) - ref.at(x, y)[c]) / 3;
-            std::fprintf(stderr, "\r%s: seed %d/%d, %zu/%zu   ", name.c_str(), seed, seeds, m + 1, methods.size());
+            if (progressShown()) std::fprintf(stderr, "\r%s: seed %d/%d, %zu/%zu   ", name.c_str(), seed, seeds, m + 1, methods.size());
         }
-    std::fprintf(stderr, "\r%60s\r", "");
+    if (progressShown()) std::fprintf(stderr, "\r%60s\r", "");
     std::vector<std::vector<double>> rel(methods.size(), std::vector<double>(R, 0));
     double largest = 0;
     std::printf("%s, %g s per run on one thread, %d seeds, %d x %d regions: relative RMSE per region\n\n", name.c_str(), seconds, seeds,
