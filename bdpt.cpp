@@ -2312,7 +2312,7 @@ inline void metropolisStep(const SampleOptions& opt, PrimarySampleChain& chain, 
 // p_{s,t} the product of its area densities (mirrors and glass in bdpt's measure: deltas cancel).
 // A proposal y, made from x with the tentative transition density T(y|x), is accepted with
 //     a(y|x) = min(1, f(y) T(x|y) / (f(x) T(y|x)))
-// (detailed balance: f/b stays the chain's stationary density). Three mutations, each chosen
+// (detailed balance: f/b stays the chain's stationary density). Four mutations, each chosen
 // uniformly among those that apply to x:
 // - the bidirectional mutation: delete the vertices x_a..x_{b-1} (kd = b-a+1 edges; kd = 1 deletes
 //   none), add n new ones (ka = n+1 edges): s by a walk from x_{a-1} (a new light point when
@@ -2330,6 +2330,10 @@ inline void metropolisStep(const SampleOptions& opt, PrimarySampleChain& chain, 
 //   an angle theta (density 1/theta, scaled so that the move on the film is a few pixels), follow
 //   the same specular lobes, and connect the new x_{k-1} to the pinhole. Its range of theta
 //   depends on the path's lengths, so its density does not cancel and is part of T.
+// - the multi-chain perturbation, for what is seen through mirrors and glass when its light came
+//   through them too (... D S+ D S* E, L S+ E): the lens perturbation's move, then at each diffuse
+//   vertex a small turn of the direction toward the next specular chain, to a connection or the
+//   lamp hit. The turns' densities cancel too; left are pE and, after a turn, |cos| / d^2.
 // Walks have no roulette (their lengths are chosen); glass adds the probability of the lobe a walk
 // took (F or 1-F) to T and to f alike, and a perturbation, which keeps the lobes, has none. f and
 // T are in double (products of densities span hundreds of decades); only their ratios are used.
