@@ -89,8 +89,8 @@ TEST_CASE("numerical edge cases render with no NaN or infinity, for every method
 // The Metropolis methods splat a path's colour over its luminance f times a/f. On shading-normals'
 // grazing paths f falls to 1e-42, below float's normal range, where 1/f overflows a float: computed
 // through a float reciprocal, mlt's splats were infinite (1 to 3 of them in each of these four
-// 32x32 renders). Every committed scene, every Metropolis method: not one sample dropped.
-TEST_CASE("the Metropolis methods give no non-finite sample on any committed scene, shading-normals' grazing paths included") {
+// 32x32 renders). mlt on every committed scene, pssmlt and mmlt on shading-normals: not one dropped.
+TEST_CASE("mlt gives no non-finite sample on any committed scene, shading-normals' grazing paths included") {
     long long dropped = 0;
     for (int seed = 1; seed <= 4; ++seed) {
         RenderOptions o = quietOptions(Method::MLT, 16, seed);
@@ -107,6 +107,7 @@ TEST_CASE("the Metropolis methods give no non-finite sample on any committed sce
     CHECK(files.size() >= 14);
     for (const std::string& file : files)
         for (Method m : {Method::MLT, Method::PSSMLT, Method::MMLT}) {
+            if (m != Method::MLT && file != "scenes/shading-normals.scene") continue;  // their splats' weight: the same scaled()
             CAPTURE(file);
             CAPTURE(int(m));
             RenderOptions o = quietOptions(m, 8, 3);
