@@ -148,11 +148,14 @@ TEST_CASE("mlt, pssmlt and mmlt agree with the references region by region, over
     // bug it must catch (tests/README.md) moved it above 1,800 on at least one scene.
     // Mutations per pixel for mlt, pssmlt and mmlt: as many as bring most regions' relative
     // standard error to 0.01-0.1 (the check below), so that a bias of a few percent shows.
+    // door-hidden, Veach's showcase, for mlt alone: pssmlt and mmlt run the same code on it as on
+    // door, and there took half the test's time (18 of 38 s) for no bug that door does not show.
     struct Case { std::string scene; int spp[3]; };
-    for (Case c : {Case{"cornell", {16, 4, 16}}, Case{"cornell-glass", {16, 4, 16}}, Case{"door", {16, 16, 64}}, Case{"door-hidden", {32, 32, 128}}}) {
+    for (Case c : {Case{"cornell", {16, 4, 16}}, Case{"cornell-glass", {16, 4, 16}}, Case{"door", {16, 16, 64}}, Case{"door-hidden", {32, 0, 0}}}) {
         Scene scene = sceneAt("scenes/" + c.scene + ".scene", 64, 64);
         RegionEstimate ref = referenceRegions(c.scene, 4);
         for (Method method : {Method::MLT, Method::PSSMLT, Method::MMLT}) {
+            if (c.spp[method == Method::MLT ? 0 : method == Method::PSSMLT ? 1 : 2] == 0) continue;
             RenderOptions opt = quietOptions(method, c.spp[method == Method::MLT ? 0 : method == Method::PSSMLT ? 1 : 2]);
             opt.bootstrap = method == Method::MMLT ? 100000 : 20000;
             opt.chains = 256;
