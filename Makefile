@@ -134,7 +134,7 @@ help:
 	@echo "make class      a class's figures for a projector (six panels at equal samples and time, pyramid,"
 	@echo "                mistakes, sds, Metropolis, error-vs-time charts): build/class/ (about 4 minutes)"
 	@echo "make uneven     bdpt, mlt, pssmlt and mmlt per region on the door: build/uneven-door.png (about 1 minute)"
-	@echo "make charts     error against time, every method and scene, and both samplers, 1.5 s a run: build/charts/ (about 5 minutes)"
+	@echo "make charts     error against time, every method and scene, and both samplers, 1.5 s a run: build/charts/ (about 6 minutes)"
 	@echo "make efficiency 1/(MSE x CPU-s) of every method, 64 samples, 2 seeds: build/efficiency.md (about 3 minutes)"
 	@echo "make metropolis mlt, pssmlt and mmlt against bdpt, 8 seeds, two sizes: build/metropolis.md; mlt's mutations: build/mutations.md (about 50 minutes)"
 	@echo "make bench      our BVH against Embree, cost per sample and where it goes: printed only (about 4 minutes)"

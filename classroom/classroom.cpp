@@ -134,6 +134,8 @@ struct ClassroomLine : CommandLine {
     bool overwrite = false;      // --overwrite: --out may replace a file the project ships
     bool profile = false;        // --profile: one thread, the time per sample by part
     std::vector<std::string> sideBySide;  // --side-by-side: one method and its options per entry
+    std::string title;           // --title: the side by side's first line
+    std::string ratioPanel;      // --ratio-panel mean|error: the second entry over the first
 };
 
 // The tools' rows, each placed after the lecture's row it follows in --help.
@@ -155,18 +157,33 @@ inline std::map<std::string, std::vector<OptionRow<CR>>> toolRows() {
            "converging (on a projector, say); --log is written as the passes finish",
            [](CR& cl, A& a) { cl.liveSeconds = a.number(1e-3, 1e6); }},
           {"--side-by-side", "\"M1,M2 OPTIONS,...\"", {}, "",
-           "render several methods at once into one labelled image, panel by panel:\n"
-           "each entry a method and its own options (\"nee,nee --mis,ir --clamp 1e-5\"),\n"
-           "every other option shared; all run together on the cores, so --time T gives\n"
-           "each the same T seconds (equal time) and --spp N the same samples. Each\n"
-           "panel shows its samples, seconds and, with --ref, its RMSE; enlarged to at\n"
-           "least 1280 pixels wide; with --live a first frame at once. Each method's\n"
-           "PFM goes beside the PNG (FILE-1-pt.pfm, ...). An entry may name its own\n"
-           "scene (\"bdpt,bdpt scenes/sds-point.scene\"): one method on two scenes",
+           "render several methods at once into one titled 16:9 image (1920x1080 where\n"
+           "the images fit): each entry a method and its own options (\"nee,nee --mis,\n"
+           "ir --clamp 1e-5\"), every other option shared; all run together, --spp N\n"
+           "gives each N samples per pixel, --time T each T seconds of CPU time on one\n"
+           "thread of its own (equal CPU time however the cores are shared). Under each\n"
+           "image: the slides' caption where the entry is one of their six methods, its\n"
+           "samples, seconds and, with --ref, RMSE; with --live a first frame at once.\n"
+           "Each method's PFM goes beside the PNG (FILE-1-pt.pfm, ...). An entry may\n"
+           "name its own scene (\"bdpt,bdpt scenes/sds-point.scene\"): one method on\n"
+           "two scenes",
            [](CR& cl, A& a) {
                std::stringstream list(a.value());
                for (std::string entry; std::getline(list, entry, ',');) cl.sideBySide.push_back(entry);
                if (cl.sideBySide.size() < 2 || cl.sideBySide.size() > 8) a.fail("--side-by-side needs 2 to 8 methods, separated by commas");
+           }},
+          {"--title", "TEXT", {}, "",
+           "--side-by-side's first title line (the second always names the scene, its\n"
+           "size and the samples or CPU time each panel had)",
+           [](CR& cl, A& a) { cl.title = a.value(); }},
+          {"--ratio-panel", "mean|error", {}, "",
+           "--side-by-side of two entries (right, then a deliberate mistake): a third\n"
+           "panel, the second over the first in blocks; mean: the ratio of their means,\n"
+           "grey where within the noise; error: of their squared errors against\n"
+           "--ref (a mistake that adds noise, not bias); the overall ratio in the title",
+           [](CR& cl, A& a) {
+               cl.ratioPanel = a.value();
+               if (cl.ratioPanel != "mean" && cl.ratioPanel != "error") a.fail("--ratio-panel is mean or error");
            }}}},
         {"--help", {{nullptr, "", {}, "",
            "Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;\n"
@@ -333,6 +350,8 @@ inline void checkClassroomCombinations(ClassroomLine& cl) {
     if ((cl.average || cl.ratio) && !given("--out"))
         ArgReader::fail(std::string(cl.average ? "--average" : "--ratio") + " writes an image: name it with --out FILE.png");
     if (!cl.pfmA.empty()) return;
+    for (const char* figure : {"--title", "--ratio-panel"})
+        if (cl.sideBySide.empty() && given(figure)) ArgReader::fail(std::string(figure) + " is for --side-by-side's figure: give --side-by-side");
     for (const char* alone : {"--method", "--log", "--strategies", "--profile"})
         if (!cl.sideBySide.empty() && given(alone))
             ArgReader::fail(std::string(alone) + " does not go with --side-by-side" +
@@ -487,7 +506,7 @@ struct PassLog {
             log << fileStem(cl.scenePath) << "," << methodName(cl.opt.method) << "," << optionsLabel(cl.opt) << "," << p + 1 << "," << p + 1
                 << "," << seconds << ",";
             if (ref.width > 0) {
-                ErrorMetrics m = compareToReference(mean, ref);
+                ErrorMetrics m = compareToReference(mean, ref, &r.scene);
                 log << m.rmse << "," << m.relMse << "," << m.mean << "," << m.bias << "," << m.firefly << "," << r.result.nonFinite << ","
                     << m.rmseWithoutLamp << "\n";
             } else {
@@ -499,11 +518,6 @@ struct PassLog {
     }
 };
 
-inline double threadCpuSeconds() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
 
 // --profile's line: the render's CPU time per sample, split as the clock's ticks split.
 inline void printProfile(const CostClock& clock, double cpuSeconds, double samples, std::ostream& out) {
@@ -538,12 +552,21 @@ struct VcmTotals {
     }
 };
 
+inline double threadCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 // The classroom's render loop: the lecture's passes (Rendering), with after each one the pass
 // handed to `watch` (the log, the live image, a side-by-side panel), a Ctrl-C honoured between
 // passes, and the progress bar drawn by a thread of its own from the rows done in the pass.
+// cpuSeconds > 0 (a panel on one thread): --time counts this thread's CPU time, not the clock's.
 template <class Watch>
-inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, bool progressBar, bool& interrupted, const Watch& watch) {
+inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, bool progressBar, bool& interrupted, const Watch& watch,
+                                  bool cpuTime = false) {
     Rendering r(scene, opt);
+    const double cpuStart = threadCpuSeconds();
     std::atomic<int> passesDone{0};
     std::atomic<bool> finished{false};
     std::thread bar;
@@ -565,79 +588,192 @@ inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, 
         r.addPass();
         passesDone = r.result.passes;
         watch(r);
-    } while (morePasses(r));
+    } while (cpuTime ? threadCpuSeconds() - cpuStart < opt.seconds : morePasses(r));
     finished = true;
     if (bar.joinable()) bar.join();
     return r.finish();
 }
 
 // --side-by-side: several methods on one scene at once, each in a thread of its own (with its
-// share of the cores), so that they have the same time, and one labelled image of their running
-// means, rewritten every --live seconds from the first moment on.
+// share of the cores), and one titled image of their running means, rewritten every --live
+// seconds from the first moment on. With --time each panel renders on one thread until that
+// thread's own CPU clock reaches the time: equal CPU time, however the cores are shared.
 struct SideBySidePanel {
     std::string label;  // the entry as written: "ir --clamp 1e-5"
     ClassroomLine cl;
     Scene scene;        // its own copy (sharing the BVH): the deliberate mistakes are the scene's
     std::mutex lock;    // guards what follows, which the render's thread writes and the frames read
-    std::vector<double> sum;
+    std::vector<double> sum, sumSquares;  // per pixel and channel, over passes
     int passes = 0;
-    double seconds = 0;
+    double seconds = 0;  // CPU seconds with --time (one thread), else wall seconds
     bool done = false, outOfMemory = false;
     RenderResult result;
 };
 
-// The panels in a grid (up to 3 across, else two rows), each enlarged by a whole factor so that
-// the image is at least about 1280x720: a projector's size, read from the back of a room.
+// The slides' captions of "Results from Different Techniques", for the entries that are exactly
+// the methods they name.
+inline std::string slideCaption(const std::string& entry) {
+    static const std::map<std::string, std::string> captions = {
+        {"pt", "(a) Unidirectional (eye tracing)"}, {"nee", "(b) Unidirectional + next event"},
+        {"lt", "(c) Next event (light tracing)"},   {"ir", "(d) Instant radiosity"},
+        {"bdpt", "(f) Bidirectional path tracing"}};
+    if (entry.rfind("ir --clamp ", 0) == 0 && entry.find(' ', 11) == std::string::npos) return "(e) Instant radiosity (clamped)";
+    auto it = captions.find(entry);
+    return it == captions.end() ? "" : it->second;
+}
+
+// The figure for a projector: a title over the panels, each panel's caption under its own image,
+// the images enlarged by the largest whole factor that fits 1920x1080, the canvas 16:9 (padded,
+// content centred). Tiles are the panels and, with --ratio-panel, the ratio after them.
 struct SideBySideLayout {
-    int W, H, cols, rows, zoom, scale, strip, gap, panelW, panelH, canvasW, canvasH;  // W x H: the image's size
-    // widest: the widest line of text at scale 1 (drawLabel's width), which must fit a panel
-    SideBySideLayout(int n, int width, int height, int widest) : W(width), H(height) {
+    int W, H, tiles, cols, rows, zoom = 1, scale, titleScale, titleLines, gap, strip, titleH, panelW, panelH, contentW, contentH,
+        canvasW, canvasH, left, top;
+    SideBySideLayout(int n, int width, int height, int widest, int widestTitle, int lines) : W(width), H(height), tiles(n), titleLines(lines) {
         cols = n <= 3 ? n : (n + 1) / 2;
         rows = (n + cols - 1) / cols;
-        zoom = std::max({1, (1280 + cols * W - 1) / (cols * W), (600 + rows * H - 1) / (rows * H)});
-        panelW = W * zoom, panelH = H * zoom;
-        scale = labelScale(panelW, widest);
-        gap = 2 * scale;
-        strip = 3 * 7 * scale + gap;        // three lines of text above each panel
-        canvasW = cols * (panelW + gap) + gap, canvasH = rows * (strip + panelH + gap) + gap;
+        for (int z = 64; z >= 1; --z) {
+            zoom = z;
+            size(widest, widestTitle);
+            if (contentW <= 1920 && contentH <= 1080) break;
+        }
+        canvasW = std::max({1920, contentW, (contentH * 16 + 8) / 9}), canvasH = std::max(contentH, (canvasW * 9 + 15) / 16);
+        left = (canvasW - contentW) / 2, top = (canvasH - contentH) / 2;
     }
+    void size(int widest, int widestTitle) {
+        panelW = W * zoom, panelH = H * zoom;
+        scale = std::max(1, std::min(4, (panelW - 4) / std::max(1, widest)));
+        titleScale = std::max(scale, std::min(6, (cols * panelW) / std::max(1, widestTitle)));
+        gap = 3 * scale;
+        strip = 3 * 7 * scale + gap;  // three lines of caption under each image
+        titleH = titleLines * 7 * titleScale + 2 * gap;
+        contentW = cols * (panelW + gap) + gap, contentH = titleH + rows * (panelH + strip + gap) + gap;
+    }
+    int tileX(int i) const { return left + gap + (i % cols) * (panelW + gap); }
+    int tileY(int i) const { return top + titleH + (i / cols) * (panelH + strip + gap); }
 };
 
+// A panel's running mean and the variance of that mean per pixel (from the passes' spread).
+inline void panelMean(SideBySidePanel& panel, Image& mean, Image* variance, int& passes, double& seconds) {
+    std::lock_guard<std::mutex> hold(panel.lock);
+    passes = panel.passes, seconds = panel.seconds;
+    for (size_t p = 0; passes > 0 && p < mean.pixels.size(); ++p)
+        for (int c = 0; c < 3; ++c) {
+            double m = panel.sum[3 * p + c] / passes;
+            mean.pixels[p][c] = float(m);
+            if (variance) variance->pixels[p][c] = float(std::max(0.0, panel.sumSquares[3 * p + c] / passes - m * m) / std::max(1, passes - 1));
+        }
+}
+
+struct RatioPanel {
+    std::string kind;  // "mean": B/A of the means; "error": B's squared error over A's, against --ref
+    Image colours;
+    double overall = 0;  // the ratio of the image means, or of the MSEs
+};
+
+// --ratio-panel: the second panel over the first in blocks about a sixteenth of the image across
+// (large enough to read from the back of a room). "mean": grey where the blocks' means differ by
+// less than 3 standard errors or either is known to less than 15% (noise, not the mistake); "error": each block's squared error against
+// the reference, over two stops either way (a mistake that adds noise, not bias).
+inline RatioPanel ratioPanel(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const std::string& kind, const Image& ref) {
+    const int W = panels[0]->scene.camera.width, H = panels[0]->scene.camera.height, block = std::max(2, std::min(W, H) / 12);
+    Image a(W, H), b(W, H), va(W, H), vb(W, H);
+    int passesA, passesB;
+    double seconds;
+    panelMean(*panels[0], a, &va, passesA, seconds);
+    panelMean(*panels[1], b, &vb, passesB, seconds);
+    RatioPanel r{kind, Image(W, H)};
+    auto lum3 = [](const Vec3& v) { return double(v.x) + v.y + v.z; };
+    auto sq = [](double d) { return d * d; };
+    double errA = 0, errB = 0;
+    for (int by = 0; by < H; by += block)
+        for (int bx = 0; bx < W; bx += block) {
+            double sa = 0, sb = 0, vsa = 0, vsb = 0;
+            for (int y = by; y < std::min(H, by + block); ++y)
+                for (int x = bx; x < std::min(W, bx + block); ++x) {
+                    if (kind == "error") {
+                        sa += sq(lum3(a.at(x, y)) - lum3(ref.at(x, y))), sb += sq(lum3(b.at(x, y)) - lum3(ref.at(x, y)));
+                    } else {
+                        sa += lum3(a.at(x, y)), sb += lum3(b.at(x, y)), vsa += lum3(va.at(x, y)), vsb += lum3(vb.at(x, y));
+                    }
+                }
+            errA += sa, errB += sb;
+            Vec3 colour(0.03f);  // black in both
+            if (sa > 0 && sb > 0) {
+                const float stops = kind == "error" ? 2 : 1, t = std::max(-1.0f, std::min(1.0f, float(std::log2(sb / sa)) / stops));
+                colour = t >= 0 ? Vec3(1, 1 - t, 1 - t) : Vec3(1 + t, 1 + t, 1);
+                // Within the noise: closer than 3 standard errors, or a block so noisy (a few rare
+                // splats) that its spread from the passes is no error bar.
+                if (kind == "mean" && (std::fabs(sb - sa) < 3 * std::sqrt(vsa + vsb) || vsa > sqr(0.15 * sa) || vsb > sqr(0.15 * sb)))
+                    colour = Vec3(0.25f);
+            } else if (sa > 0 || sb > 0) {
+                colour = sb > 0 ? Vec3(1, 0, 0) : Vec3(0, 0, 1);
+            }
+            for (int y = by; y < std::min(H, by + block); ++y)
+                for (int x = bx; x < std::min(W, bx + block); ++x) r.colours.at(x, y) = colour;
+        }
+    r.overall = kind == "error" ? errB / std::max(1e-30, errA) : imageMean(b) / std::max(1e-30, imageMean(a));
+    return r;
+}
+
+inline std::string threeDigits(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", x);
+    return text;
+}
+
 inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const Image& ref,
-                                                  const SideBySideLayout& L) {
+                                                  const SideBySideLayout& L, const std::vector<std::string>& title, const std::string& ratioKind) {
     std::vector<unsigned char> canvas(size_t(L.canvasW) * L.canvasH * 3, 24);
+    const bool cpu = panels[0]->cl.opt.seconds > 0;
+    auto caption = [&](int tile, int line, const std::string& text) {
+        drawLabel(canvas, L.canvasW, L.canvasH, L.tileX(tile), L.tileY(tile) + L.panelH + L.gap / 2 + line * 7 * L.scale, text, L.scale);
+    };
     for (size_t i = 0; i < panels.size(); ++i) {
         SideBySidePanel& panel = *panels[i];
-        const int W = L.W, H = L.H;
-        Image mean(W, H);
+        Image mean(L.W, L.H);
         int passes;
         double seconds;
-        {
-            std::lock_guard<std::mutex> hold(panel.lock);
-            passes = panel.passes, seconds = panel.seconds;
-            for (size_t p = 0; passes > 0 && p < mean.pixels.size(); ++p)
-                for (int c = 0; c < 3; ++c) mean.pixels[p][c] = float(panel.sum[3 * p + c] / passes);
-        }
-        std::vector<unsigned char> rgb = toSRGBBytes(mean, panel.cl.exposure);
-        const int x0 = L.gap + int(i % L.cols) * (L.panelW + L.gap), y0 = L.gap + int(i / L.cols) * (L.strip + L.panelH + L.gap);
-        blitZoomed(canvas, L.canvasW, rgb, W, H, L.zoom, x0, y0 + L.strip);
-        std::string lines[3] = {panel.label, passes > 0 ? std::to_string(passes) + " spp  " + duration(seconds) : "starting", ""};
-        if (ref.width > 0 && passes > 0) {
-            char text[32];
-            std::snprintf(text, sizeof text, "rmse %.3g", compareToReference(mean, ref).rmse);
-            lines[2] = text;
-        }
-        for (int line = 0; line < 3; ++line) drawLabel(canvas, L.canvasW, L.canvasH, x0, y0 + line * 7 * L.scale, lines[line], L.scale);
+        panelMean(panel, mean, nullptr, passes, seconds);
+        blitZoomed(canvas, L.canvasW, toSRGBBytes(mean, panel.cl.exposure), L.W, L.H, L.zoom, L.tileX(int(i)), L.tileY(int(i)));
+        const std::string slide = !ratioKind.empty() ? (i == 0 ? "right" : "deliberate mistake") : slideCaption(panel.label);
+        std::string counts = passes > 0 ? std::to_string(passes) + " spp, " + threeDigits(seconds) + (cpu ? " CPU s" : " s") : "starting";
+        caption(int(i), 0, slide.empty() ? panel.label : slide);
+        caption(int(i), 1, slide.empty() ? counts : panel.label + ": " + counts);
+        if (ref.width > 0 && passes > 0) caption(int(i), 2, "RMSE " + threeDigits(compareToReference(mean, ref, &panel.scene).rmse));
     }
+    std::vector<std::string> lines = title;
+    if (!ratioKind.empty() && panels[0]->passes > 0 && panels[1]->passes > 0) {
+        RatioPanel r = ratioPanel(panels, ratioKind, ref);
+        const int t = int(panels.size());
+        blitZoomed(canvas, L.canvasW, toSRGBBytes(r.colours, 0), L.W, L.H, L.zoom, L.tileX(t), L.tileY(t));
+        const std::string division = "'" + panels[1]->label + "' / '" + panels[0]->label + "'";
+        if (ratioKind == "error") {
+            caption(t, 0, "squared error: " + division);
+            caption(t, 1, "blue 1/4 - white 1 - red 4");
+            lines.push_back("squared error " + division + " = " + threeDigits(r.overall));
+        } else {
+            caption(t, 0, "mean: " + division);
+            caption(t, 1, "blue 1/2 - white 1 - red 2");
+            caption(t, 2, "grey: within the noise");
+            lines.push_back(division + " = " + threeDigits(r.overall) + " on average");
+        }
+    }
+    for (size_t k = 0; k < lines.size(); ++k)
+        drawLabel(canvas, L.canvasW, L.canvasH, (L.canvasW - labelWidth(lines[k], L.titleScale)) / 2, L.top + L.gap + int(k) * 7 * L.titleScale,
+                  lines[k], L.titleScale);
     return canvas;
 }
 
 // The panels' own command lines: the scene, the entry's method and options, and every option of
-// the whole line but those that name the one image (--out, --live) and --side-by-side itself.
+// the whole line but those of the one figure (--out, --live, --title, --ratio-panel) and
+// --side-by-side itself.
 inline std::vector<std::unique_ptr<SideBySidePanel>> sideBySidePanels(const std::vector<std::string>& args, const ClassroomLine& cl) {
     std::vector<std::string> shared;
     for (size_t i = 0; i < args.size(); ++i) {
-        if (args[i] == "--side-by-side" || args[i] == "--out" || args[i] == "--live") { ++i; continue; }
+        if (args[i] == "--side-by-side" || args[i] == "--out" || args[i] == "--live" || args[i] == "--title" || args[i] == "--ratio-panel") {
+            ++i;
+            continue;
+        }
         if (args[i] != "--overwrite" && args[i] != cl.scenePath) shared.push_back(args[i]);
     }
     std::vector<std::unique_ptr<SideBySidePanel>> panels;
@@ -709,17 +845,21 @@ inline std::thread startPanel(SideBySidePanel& panel, int threads) {
     if (!panel.cl.exposureGiven) panel.cl.exposure = panel.scene.exposure;
     panel.cl.opt.threads = threads;
     panel.sum.assign(3 * size_t(panel.scene.camera.width) * panel.scene.camera.height, 0.0);
+    panel.sumSquares = panel.sum;
     return std::thread([&panel] {
-        auto addPass = [&panel](const Rendering& r) {
+        const bool cpuTime = panel.cl.opt.seconds > 0 && panel.cl.opt.threads == 1;
+        const double cpuStart = threadCpuSeconds();
+        auto addPass = [&](const Rendering& r) {
             std::lock_guard<std::mutex> hold(panel.lock);
             for (size_t i = 0; i < r.pass.size(); ++i)
-                for (int c = 0; c < 3; ++c) panel.sum[3 * i + c] += r.pass[i][c];
+                for (int c = 0; c < 3; ++c) panel.sum[3 * i + c] += r.pass[i][c], panel.sumSquares[3 * i + c] += sqr(r.pass[i][c]);
             panel.passes = r.result.passes;
-            panel.seconds = secondsSince(r.start);
+            panel.seconds = cpuTime ? threadCpuSeconds() - cpuStart : secondsSince(r.start);
         };
         bool interrupted = false;
         try {
-            panel.result = renderWatched(panel.scene, panel.cl.opt, false, interrupted, addPass);
+            panel.result = renderWatched(panel.scene, panel.cl.opt, false, interrupted, addPass, cpuTime);
+            if (cpuTime) panel.result.seconds = threadCpuSeconds() - cpuStart;
         } catch (const std::bad_alloc&) {
             panel.outOfMemory = true;
         }
@@ -741,18 +881,34 @@ inline int writePanels(const std::vector<std::unique_ptr<SideBySidePanel>>& pane
         }
         if (cl.quiet) continue;
         char text[160];
-        std::snprintf(text, sizeof text, "%zu. %s: %d samples per pixel in %.2f s on %d thread%s, mean %g, ", i + 1, panel.label.c_str(),
-                      panel.result.passes, panel.result.seconds, panel.cl.opt.threads, panel.cl.opt.threads > 1 ? "s" : "",
+        std::snprintf(text, sizeof text, "%zu. %s: %d samples per pixel in %.2f %s on %d thread%s, mean %g, ", i + 1, panel.label.c_str(),
+                      panel.result.passes, panel.result.seconds, cl.opt.seconds > 0 ? "CPU s" : "s", panel.cl.opt.threads,
+                      panel.cl.opt.threads > 1 ? "s" : "",
                       imageMean(panel.result.image));
         out << text << raysPerSample(panel.result) << "; wrote " << pfm;
         if (ref.width > 0) {
-            ErrorMetrics m = compareToReference(panel.result.image, ref);
+            ErrorMetrics m = compareToReference(panel.result.image, ref, &panel.scene);
             std::snprintf(text, sizeof text, "; rmse %.4g (%.4g without the lamp's pixels), bias %+.2f%%", m.rmse, m.rmseWithoutLamp, 100 * m.bias);
             out << text;
         }
         out << "\n";
     }
     return 0;
+}
+
+// The figure's title: --title's line, then what is compared: the scene, its size, the budget.
+inline std::vector<std::string> sideBySideTitle(const std::vector<std::unique_ptr<SideBySidePanel>>& panels, const ClassroomLine& cl,
+                                                const Scene& scene) {
+    std::set<std::string> scenes;
+    for (auto& panel : panels) scenes.insert(fileStem(panel->cl.scenePath));
+    std::string what = scenes.size() == 1 ? *scenes.begin() : std::to_string(scenes.size()) + " scenes";
+    what += " (" + std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) + "): ";
+    if (cl.opt.seconds > 0) what += "equal CPU time, " + threeDigits(cl.opt.seconds) + " s each on one thread";
+    else what += std::to_string(cl.opt.spp) + (cl.opt.spp == 1 ? " sample" : " samples") + " per pixel each";
+    std::vector<std::string> lines;
+    if (!cl.title.empty()) lines.push_back(cl.title);
+    lines.push_back(what);
+    return lines;
 }
 
 inline int runSideBySide(const std::vector<std::string>& args, ClassroomLine& cl, const Scene& scene, const Image& ref, std::ostream& out,
@@ -765,19 +921,31 @@ inline int runSideBySide(const std::vector<std::string>& args, ClassroomLine& cl
         return 2;
     }
     if (int status = loadPanelScenes(panels, cl, scene, ref, err)) return status;
+    if (!cl.ratioPanel.empty() && panels.size() != 2) {
+        err << "bdpt: --ratio-panel divides the second entry by the first: give --side-by-side two entries (nothing rendered)\n";
+        return 2;
+    }
+    if (cl.ratioPanel == "error" && ref.width == 0) {
+        err << "bdpt: --ratio-panel error compares each entry's squared error against the reference: give --ref (nothing rendered)\n";
+        return 2;
+    }
     const int n = int(panels.size()), cores = cl.opt.threads > 0 ? cl.opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    int widest = labelWidth("9999 spp  59.9 s", 1);
-    for (auto& panel : panels) widest = std::max(widest, labelWidth(panel->label, 1));
-    const SideBySideLayout layout(n, scene.camera.width, scene.camera.height, widest);
+    const std::vector<std::string> title = sideBySideTitle(panels, cl, scene);
+    int widest = labelWidth("(b) Unidirectional + next event", 1), widestTitle = 1;
+    for (auto& panel : panels) widest = std::max(widest, labelWidth(panel->label + ": 999 spp, 99.9 CPU s", 1));
+    if (!cl.ratioPanel.empty()) widest = std::max(widest, labelWidth("squared error: '" + panels[1]->label + "' / '" + panels[0]->label + "'", 1));
+    for (const std::string& line : title) widestTitle = std::max(widestTitle, labelWidth(line, 1));
+    const SideBySideLayout layout(n + !cl.ratioPanel.empty(), scene.camera.width, scene.camera.height, widest, widestTitle,
+                                  int(title.size()) + !cl.ratioPanel.empty());
     auto writeFrame = [&] {
         std::snprintf(gFileBeingWritten, sizeof gFileBeingWritten, "%s", tempName(cl.out).c_str());
-        bool ok = writePNGBytes(sideBySideFrame(panels, ref, layout), layout.canvasW, layout.canvasH, cl.out);
+        bool ok = writePNGBytes(sideBySideFrame(panels, ref, layout, title, cl.ratioPanel), layout.canvasW, layout.canvasH, cl.out);
         gFileBeingWritten[0] = 0;
         return ok;
     };
     if (cl.liveSeconds > 0) writeFrame();  // at once: a viewer opens it, and never shows an older run's image
     std::vector<std::thread> running;
-    for (auto& panel : panels) running.push_back(startPanel(*panel, std::max(1, cores / n)));
+    for (auto& panel : panels) running.push_back(startPanel(*panel, cl.opt.seconds > 0 ? 1 : std::max(1, cores / n)));
     auto lastFrame = std::chrono::steady_clock::now();
     for (bool all = false; !all;) {
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -796,6 +964,9 @@ inline int runSideBySide(const std::vector<std::string>& args, ClassroomLine& cl
         return 1;
     }
     if (int status = writePanels(panels, cl, ref, out, err)) return status;
+    if (!cl.quiet && !cl.ratioPanel.empty())
+        out << "ratio panel: '" << panels[1]->label << "' / '" << panels[0]->label << "' = " << ratioPanel(panels, cl.ratioPanel, ref).overall
+            << (cl.ratioPanel == "error" ? " (of the squared errors)" : " (of the means)") << "\n";
     if (!cl.quiet) out << "wrote " << cl.out << " (" << layout.canvasW << "x" << layout.canvasH << ")\n";
     if (gInterrupts.load() > 0) {
         err << "bdpt: interrupted: wrote the completed samples per pixel of every panel\n";
@@ -889,7 +1060,7 @@ inline int renderOne(ClassroomLine& cl, const Scene& scene, const Image& ref, st
     if (!cl.quiet) printMethodSummary(cl, scene, r, vcm, out);
     if (cl.profile) printProfile(gCostClock, cpu, double(r.passes) * r.image.width * r.image.height, out);
     if (!cl.quiet && ref.width > 0) {
-        ErrorMetrics m = compareToReference(r.image, ref);
+        ErrorMetrics m = compareToReference(r.image, ref, &scene);
         char text[256];
         std::snprintf(text, sizeof text, "against %s: rmse %.4g (%.4g without the lamp's pixels), relmse %.4g, bias %+.2f%%\n",
                       cl.refPath.c_str(), m.rmse, m.rmseWithoutLamp, m.relMse, 100 * m.bias);

@@ -225,11 +225,11 @@ samplerPlot() {
     done
   done < <(samplerMethods)
   gnuplot <<GP
-set terminal pngcairo size 1280,720 font "sans,20"
+set terminal pngcairo size 1920,1080 font "DejaVu Sans,26"
 set output "$FIG/error-vs-time-samplers-$variant.png"
 set datafile separator ","
 set logscale xy
-set key top right inside box opaque
+set key outside right
 set grid
 set title "$what, $RES, $RUN_SECONDS s a run\n--sampler sobol (solid) and random (dashed)"
 set xlabel "seconds (2 threads)"
@@ -285,13 +285,28 @@ plotScene() {
   local s=$1
   refnoise=$(refNoise "$s")
   while IFS='|' read -r suffix group; do
-    local plot="" logs=()
+    local plot="" logs=() left=() flat=()
     for label in $group; do
+      local log=$LOGS/$s-$label.csv name=${label%-balance} key rows
+      # a run of fewer than 3 passes (a Markov chain's bootstrap in a quick run) is no curve:
+      # left out of the chart and its key, and said so
+      rows=$(awk -F, 'NR > 1 && $13 > 0' "$log" | wc -l)
+      if [ "$rows" -lt 3 ]; then left+=("$name ($rows passes)"); continue; fi
+      # a flat curve with the same RMSE as one drawn before it lies under it: the key says so
+      key=$name
+      read -r lo hi < <(awk -F, 'NR > 1 && $13 > 0 { if (!n++ || $13 < lo) lo = $13; if ($13 > hi) hi = $13 } END { print lo, hi }' "$log")
+      for f in "${flat[@]}"; do
+        read -r other value <<< "$f"
+        awk -v a="$lo" -v b="$hi" -v v="$value" 'BEGIN { exit !(b < 1.02 * a && a < 1.02 * v && v < 1.02 * b) }' && key="$name (under $other: the same RMSE)"
+      done
+      awk -v a="$lo" -v b="$hi" 'BEGIN { exit !(b < 1.02 * a) }' && flat+=("$name $lo")
       # column 13, rmse_without_lamp: the lamp's pixels and their neighbours left out, as make
       # efficiency does, so that the charts and its table rank the methods on the same pixels
-      plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:13 with lines lw 4 $(lineStyle "$label") title '${label%-balance}'"
-      logs+=("$LOGS/$s-$label.csv")
+      plot="$plot${plot:+, }'$log' using 6:13 with lines lw 4 $(lineStyle "$label") title '$key'"
+      logs+=("$log")
     done
+    [ ${#left[@]} -eq 0 ] || echo "chart $FIG/error-vs-time-$s$suffix.png: left out ${left[*]}: too few passes in $RUN_SECONDS s (FULL=1 gives 4 s a run)"
+    [ ${#logs[@]} -gt 0 ] || continue
     # an exact reference (the furnace) has no noise to draw on a log scale
     [ "${refnoise:-0}" = 0 ] || plot="$plot, $refnoise with lines lw 2 dt 2 lc rgb '#333333' title 'reference noise'"
     # The y range: the curves' own, from the smallest final error (or the reference's noise, if
@@ -301,14 +316,14 @@ plotScene() {
             if (noise > 0 && noise < lo) lo = noise
             printf "%g:%g", lo / 1.5, hi * 1.5 }' "${logs[@]}")
     gnuplot <<GP
-set terminal pngcairo size 1280,720 font "sans,20"
+set terminal pngcairo size 1920,1080 font "DejaVu Sans,26"
 set output "$FIG/error-vs-time-$s$suffix.png"
 set datafile separator ","
 set logscale xy
 set yrange [$range]
 set key outside right
 set grid
-set title "$s ($RES): RMSE without the lamp's pixels, $RUN_SECONDS s a run on 2 threads"
+set title "$s ($RES): error against time\nRMSE without the lamp's pixels, $RUN_SECONDS s a run on 2 threads"
 set xlabel "seconds"
 set ylabel "RMSE"
 set format y "%g"

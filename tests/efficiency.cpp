@@ -60,8 +60,8 @@ static std::vector<Variant> variants(bool alternatives) {
     return v;
 }
 
-static double maskedMse(const Image& img, const Image& ref) {  // without the lamp's pixels (nearLamp)
-    double rmse = compareToReference(img, ref).rmseWithoutLamp;
+static double maskedMse(const Image& img, const Image& ref, const Scene& scene) {  // without the lamp's pixels (lampPixels)
+    double rmse = compareToReference(img, ref, &scene).rmseWithoutLamp;
     return rmse * rmse;
 }
 
@@ -154,7 +154,7 @@ static int metropolis(int seeds, const std::vector<std::string>& scenes, const s
                     double c0 = threadCpuSeconds();
                     RenderResult r = render(scene, o);
                     cpu[v].push_back(threadCpuSeconds() - c0);
-                    mse[v].push_back(maskedMse(r.image, ref));
+                    mse[v].push_back(maskedMse(r.image, ref, scene));
                     mean[v].push_back(imageMean(r.image));
                     if (progressShown()) std::fprintf(stderr, "\r%s %dx%d: seed %d/%d, %zu/%zu   ", name.c_str(), size.width, size.width, seed, seeds, v + 1, variants);
                 }
@@ -293,7 +293,7 @@ int main(int argc, char** argv) {
                 double c0 = threadCpuSeconds();
                 RenderResult r = render(scene, o);
                 cpu[v].push_back(threadCpuSeconds() - c0);
-                mse[v].push_back(maskedMse(r.image, ref));
+                mse[v].push_back(maskedMse(r.image, ref, scene));
                 share[v].push_back(specularShare(r.image, ref, specularPixels));
                 rays[v].push_back(double(r.rays.closest + r.rays.shadow) / (double(r.passes) * ref.width * ref.height));
                 if (progressShown()) std::fprintf(stderr, "\r%s: seed %d/%d, %zu/%zu   ", name.c_str(), seed, seeds, v + 1, runs.size());

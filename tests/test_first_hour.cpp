@@ -367,6 +367,48 @@ TEST_CASE("--side-by-side: each panel is the method's own render, the image at l
     CHECK(run({"scenes/cornell.scene", "--side-by-side", "pt", "--out", "build/tmp/fh_sbs.png"}).status == 2);
 }
 
+// --time in a side by side is CPU time: each panel renders on one thread until that thread's
+// clock says T, however many panels share the cores. The process's CPU time (getrusage, the
+// kernel's count, not the program's) is then about panels x T; stopped by the wall clock instead,
+// more panels than cores would share them and use about cores x T.
+TEST_CASE("--side-by-side --time T gives every panel T seconds of CPU time") {
+    const int cores = int(std::max(1u, std::thread::hardware_concurrency())), panels = std::min(8, cores + 1);
+    std::string entries = "pt";
+    for (int i = 1; i < panels; ++i) entries += i % 2 ? ",nee" : ",pt";
+    auto cpuNow = [] {
+        rusage u{};
+        getrusage(RUSAGE_SELF, &u);
+        return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+    };
+    const double T = 0.3, before = cpuNow();
+    Run r = run({"scenes/cornell.scene", "--res", "32x32", "--side-by-side", entries, "--time", "0.3", "--out", "build/tmp/fh_cpu.png"});
+    const double used = cpuNow() - before;
+    REQUIRE(r.status == 0);
+    MESSAGE(panels << " panels at --time 0.3: " << used << " CPU s in all");
+    CHECK(used > 0.9 * panels * T);
+    CHECK(used < 1.3 * panels * T + 0.2);
+    CHECK(contains(r.out, "CPU s on 1 thread"));
+}
+
+// --ratio-panel mean: the mistaken entry over the right one. Light tracing through water with the
+// refraction rules swapped carries eta^2 = 1.33^2 = 1.769 too much under the water (the scene's
+// floor is all under it), the closed form; the reverse division would give 0.565.
+TEST_CASE("--ratio-panel: the symmetric-refraction mistake is eta^2 too bright") {
+    Run r = run({"scenes/refraction.scene", "--res", "64x48", "--spp", "16", "--side-by-side", "lt,lt --symmetric-refraction",
+                 "--ratio-panel", "mean", "--title", "eta^2", "--out", "build/tmp/fh_ratio_panel.png"});
+    REQUIRE(r.status == 0);
+    const size_t at = r.out.find("ratio panel: 'lt --symmetric-refraction' / 'lt' = ");
+    REQUIRE(at != std::string::npos);
+    const double ratio = std::atof(r.out.c_str() + r.out.find(" = ", at) + 3);
+    CHECK(ratio == doctest::Approx(1.33 * 1.33).epsilon(0.03));
+    CHECK(run({"scenes/refraction.scene", "--side-by-side", "lt,pt,nee", "--ratio-panel", "mean", "--out", "build/tmp/fh_rp.png"}).status == 2);
+    CHECK(run({"scenes/refraction.scene", "--method", "lt", "--ratio-panel", "mean", "--out", "build/tmp/fh_rp.png"}).status == 2);
+    CHECK(run({"scenes/refraction.scene", "--side-by-side", "lt,pt", "--ratio-panel", "error", "--out", "build/tmp/fh_rp.png"}).status == 2);
+    int w = 0, h = 0, channels = 0;
+    CHECK(stbi_info("build/tmp/fh_ratio_panel.png", &w, &h, &channels) == 1);
+    CHECK(w * 9 == h * 16);  // 16:9 for the projector
+}
+
 // An entry that names a scene renders that scene: one method on two scenes (the point light
 // against the area light), its panel the scene's own render alone.
 TEST_CASE("--side-by-side: an entry's own scene") {
