@@ -215,7 +215,8 @@ inline std::map<std::string, std::vector<OptionRow<CR>>> toolRows() {
            [](CR& cl, A& a) { cl.ratio = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
           {"--failure-table", "LOG.csv...", {}, "",
            "print the failure table (markdown, as Appendix A of the notes has it) from\n"
-           "such logs: slope of log(rmse) against log(seconds), bias, fireflies, NaN count",
+           "such logs: slope of log(rmse) against log(seconds) (rmse without the lamp's\n"
+           "pixels where the log has it), bias, fireflies, NaN count",
            [](CR& cl, A& a) {
                cl.failureLogs.assign(a.args.begin() + a.i + 1, a.args.end());
                if (cl.failureLogs.empty()) a.fail("--failure-table needs log files");
@@ -406,7 +407,10 @@ inline int printFailureTable(const std::vector<std::string>& logs, std::ostream&
             for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
             if (f.size() < 12 || f[6].empty()) continue;
             scene = f[0]; method = f[1]; options = f[2];
-            rows.push_back({std::atof(f[5].c_str()), std::atof(f[6].c_str())});
+            // the error the charts draw: without the lamp's pixels where the log has it (a point
+            // light's own pixel in lt's image would hold lt's RMSE flat at its value)
+            const std::string& error = f.size() > 12 && !f[12].empty() ? f[12] : f[6];
+            rows.push_back({std::atof(f[5].c_str()), std::atof(error.c_str())});
             lastSeconds = rows.back().first;
             last = f;
         }

@@ -167,7 +167,8 @@ furnaceReference() {
 
 charts() {
   local n; n=$(( $(echo $SCENES | wc -w) * $(methods cornell | wc -l) ))
-  echo "charts: $n runs of $RUN_SECONDS s, about $(awk -v n=$n -v t=$RUN_SECONDS 'BEGIN { printf "%.0f", n * (t + 0.1) / 60 }') minutes, into $FIG/"
+  # each run's start-up, the samplers' 12 runs and the charts: about 0.5 s a run more (measured)
+  echo "charts: $n runs of $RUN_SECONDS s, about $(awk -v n=$n -v t=$RUN_SECONDS 'BEGIN { printf "%.0f", n * (t + 0.5) / 60 }') minutes, into $FIG/"
   for s in $SCENES; do
     [ -f scenes/refs/$s.pfm ] || { echo "no reference scenes/refs/$s.pfm: run make refs" >&2; exit 1; }
     while IFS='|' read -r label opts; do
@@ -281,30 +282,40 @@ plots() {  # the charts again from the runs' logs, without rendering (after a ch
   for variant in cornell cornell-direct; do samplerPlot $variant; done
 }
 
+# curveKeys PREFIX LABEL...: "label|key" for each run PREFIX-LABEL.csv, the key its curve's title:
+# empty for a run of fewer than 3 passes (a Markov chain's bootstrap in a quick run: no curve, left
+# out of the chart and its key), "nee-mis (under pt)" for a flat curve at the RMSE of one drawn
+# before it (the same method of failure: it lies under the other and would not be seen).
+curveKeys() {
+  local prefix=$1 flat=() label
+  shift
+  for label in "$@"; do
+    local log=$prefix-$label.csv name=${label%-balance} key rows lo hi
+    rows=$(awk -F, 'NR > 1 && $13 > 0' "$log" | wc -l)
+    if [ "$rows" -lt 3 ]; then echo "$label|"; continue; fi
+    key=$name
+    read -r lo hi < <(awk -F, 'NR > 1 && $13 > 0 { if (!n++ || $13 < lo) lo = $13; if ($13 > hi) hi = $13 } END { print lo, hi }' "$log")
+    for f in "${flat[@]}"; do
+      read -r other value <<< "$f"
+      awk -v a="$lo" -v b="$hi" -v v="$value" 'BEGIN { exit !(b < 1.02 * a && a < 1.02 * v && v < 1.02 * b) }' && key="$name (under $other)"
+    done
+    awk -v a="$lo" -v b="$hi" 'BEGIN { exit !(b < 1.02 * a) }' && flat+=("$name $lo")
+    echo "$label|$key"
+  done
+}
+
 plotScene() {
   local s=$1
   refnoise=$(refNoise "$s")
   while IFS='|' read -r suffix group; do
-    local plot="" logs=() left=() flat=()
-    for label in $group; do
-      local log=$LOGS/$s-$label.csv name=${label%-balance} key rows
-      # a run of fewer than 3 passes (a Markov chain's bootstrap in a quick run) is no curve:
-      # left out of the chart and its key, and said so
-      rows=$(awk -F, 'NR > 1 && $13 > 0' "$log" | wc -l)
-      if [ "$rows" -lt 3 ]; then left+=("$name ($rows passes)"); continue; fi
-      # a flat curve with the same RMSE as one drawn before it lies under it: the key says so
-      key=$name
-      read -r lo hi < <(awk -F, 'NR > 1 && $13 > 0 { if (!n++ || $13 < lo) lo = $13; if ($13 > hi) hi = $13 } END { print lo, hi }' "$log")
-      for f in "${flat[@]}"; do
-        read -r other value <<< "$f"
-        awk -v a="$lo" -v b="$hi" -v v="$value" 'BEGIN { exit !(b < 1.02 * a && a < 1.02 * v && v < 1.02 * b) }' && key="$name (under $other: the same RMSE)"
-      done
-      awk -v a="$lo" -v b="$hi" 'BEGIN { exit !(b < 1.02 * a) }' && flat+=("$name $lo")
+    local plot="" logs=() left=()
+    while IFS='|' read -r label key; do
+      if [ -z "$key" ]; then left+=("${label%-balance}"); continue; fi
       # column 13, rmse_without_lamp: the lamp's pixels and their neighbours left out, as make
       # efficiency does, so that the charts and its table rank the methods on the same pixels
-      plot="$plot${plot:+, }'$log' using 6:13 with lines lw 4 $(lineStyle "$label") title '$key'"
-      logs+=("$log")
-    done
+      plot="$plot${plot:+, }'$LOGS/$s-$label.csv' using 6:13 with lines lw 4 $(lineStyle "$label") title '$key'"
+      logs+=("$LOGS/$s-$label.csv")
+    done < <(curveKeys "$LOGS/$s" $group)
     [ ${#left[@]} -eq 0 ] || echo "chart $FIG/error-vs-time-$s$suffix.png: left out ${left[*]}: too few passes in $RUN_SECONDS s (FULL=1 gives 4 s a run)"
     [ ${#logs[@]} -gt 0 ] || continue
     # an exact reference (the furnace) has no noise to draw on a log scale

@@ -172,6 +172,15 @@ TEST_CASE("the failure table: slope of log(rmse) against log(time), last bias, f
     CHECK(printFailureTable({"build/tmp/short.csv"}, out2, err2) == 0);
     CHECK(out2.str().find("(few passes)") != std::string::npos);
     CHECK(err2.str().find("build/tmp/short.csv:0: warning: only 5 passes") != std::string::npos);
+    // lt on a point light: its own pixel holds the whole image's RMSE flat; the error without the
+    // lamp's pixels (the last column) falls as 1/sqrt(N), the slope the table must give.
+    std::ofstream d("build/tmp/point.csv");
+    d << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count,rmse_without_lamp\n";
+    for (int p = 1; p <= 100; ++p) d << "x,lt,," << p << "," << p << "," << 0.01 * p << ",9.18,0,1,0.001,7,0," << 0.3 / std::sqrt(p) << "\n";
+    d.close();
+    std::ostringstream out3, err3;
+    CHECK(printFailureTable({"build/tmp/point.csv"}, out3, err3) == 0);
+    CHECK(out3.str().find("| x | lt | -0.50 | +0.1% | 7 | 0 |") != std::string::npos);
 }
 
 // --profile's split: the parts add up to the whole, and each part is where the method spends it:
@@ -309,7 +318,10 @@ TEST_CASE("--profile's clock hands an interrupted part's time back to it") {
     double total = double(t[int(Cost::Merging)] + t[int(Cost::Mis)] + t[int(Cost::Tracing)] + t[int(Cost::Other)]);
     double merging = t[int(Cost::Merging)] / total, mis = t[int(Cost::Mis)] / total, other = t[int(Cost::Other)] / total;
     MESSAGE("merging " << merging << ", MIS " << mis << ", tracing " << t[int(Cost::Tracing)] / total << ", the rest " << other);
-    CHECK(merging > 0.55);  // 50 of 80 ms; the weights' 20 and tracing's 10 apart
+    // 50 of 80 ms; the weights' 20 and tracing's 10 apart. A loaded machine that preempts the
+    // thread between a spin's end and its scope's end charges the pause to that part (MIS 0.36
+    // was seen): the limit leaves room for it, and the broken clock's 0.13 is far below.
+    CHECK(merging > 0.4);
     CHECK(mis > 0.15);
     CHECK(other < 0.05);    // nothing ran outside the parts
     gCostClock = CostClock();
