@@ -565,7 +565,7 @@ inline double threadCpuSeconds() {
 // The classroom's render loop: the lecture's passes (Rendering), with after each one the pass
 // handed to `watch` (the log, the live image, a side-by-side panel), a Ctrl-C honoured between
 // passes, and the progress bar drawn by a thread of its own from the rows done in the pass.
-// cpuSeconds > 0 (a panel on one thread): --time counts this thread's CPU time, not the clock's.
+// cpuTime (a panel on one thread): --time counts this thread's CPU time, not the clock's.
 template <class Watch>
 inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, bool progressBar, bool& interrupted, const Watch& watch,
                                   bool cpuTime = false) {
@@ -630,9 +630,9 @@ inline std::string slideCaption(const std::string& entry) {
 // the images enlarged by the largest whole factor that fits 1920x1080, the canvas 16:9 (padded,
 // content centred). Tiles are the panels and, with --ratio-panel, the ratio after them.
 struct SideBySideLayout {
-    int W, H, tiles, cols, rows, zoom = 1, scale, titleScale, titleLines, gap, strip, titleH, panelW, panelH, contentW, contentH,
+    int W, H, cols, rows, zoom = 1, scale, titleScale, titleLines, gap, strip, titleH, panelW, panelH, contentW, contentH,
         canvasW, canvasH, left, top;
-    SideBySideLayout(int n, int width, int height, int widest, int widestTitle, int lines) : W(width), H(height), tiles(n), titleLines(lines) {
+    SideBySideLayout(int n, int width, int height, int widest, int widestTitle, int lines) : W(width), H(height), titleLines(lines) {
         cols = n <= 3 ? n : (n + 1) / 2;
         rows = (n + cols - 1) / cols;
         for (int z = 64; z >= 1; --z) {
@@ -674,10 +674,11 @@ struct RatioPanel {
     double overall = 0;  // the ratio of the image means, or of the MSEs
 };
 
-// --ratio-panel: the second panel over the first in blocks about a sixteenth of the image across
-// (large enough to read from the back of a room). "mean": grey where the blocks' means differ by
-// less than 3 standard errors or either is known to less than 15% (noise, not the mistake); "error": each block's squared error against
-// the reference, over two stops either way (a mistake that adds noise, not bias).
+// --ratio-panel: the second panel over the first in blocks a twelfth of the image across (large
+// enough to read from the back of a room). "mean": grey where the blocks' means differ by less
+// than 3 standard errors, or where either's standard error is over 15% of it (a few rare splats:
+// the passes' spread is then no error bar); "error": each block's squared error against the
+// reference, over two stops either way (a mistake that adds noise, not bias).
 inline RatioPanel ratioPanel(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const std::string& kind, const Image& ref) {
     const int W = panels[0]->scene.camera.width, H = panels[0]->scene.camera.height, block = std::max(2, std::min(W, H) / 12);
     Image a(W, H), b(W, H), va(W, H), vb(W, H);

@@ -157,7 +157,7 @@ inline ErrorMetrics compareToReference(const Image& img, const Image& ref, const
     ErrorMetrics m;
     std::vector<double> pixelError(img.pixels.size());
     const std::vector<char> lampMask = lampPixels(ref, scene);
-    double refSum = 0, sum = 0, lampless = 0, lamplessSum = 0, lamplessRefSum = 0;
+    double sum = 0, lampless = 0, lamplessSum = 0, lamplessRefSum = 0;
     long lamplessValues = 0;
     for (size_t i = 0; i < img.pixels.size(); ++i) {
         bool lamp = ref.width > 0 && lampMask[i];
@@ -167,7 +167,6 @@ inline ErrorMetrics compareToReference(const Image& img, const Image& ref, const
             if (!lamp) lampless += e * e, ++lamplessValues, lamplessSum += x, lamplessRefSum += r;
             m.relMse += e * e / (r * r + 0.01);
             sum += x;
-            refSum += r;
         }
         pixelError[i] = std::fabs(double(average(img.pixels[i])) - average(ref.pixels[i]));
     }
