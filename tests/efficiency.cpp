@@ -80,11 +80,12 @@ static std::vector<bool> seesSpecular(const Scene& scene) {
     return mask;
 }
 
-static double specularShare(const Image& img, const Image& ref, const std::vector<bool>& mask) {
+static double specularShare(const Image& img, const Image& ref, const std::vector<bool>& mask, const Scene& scene) {
     double inside = 0, all = 0;
+    const std::vector<char> lamp = lampPixels(ref, &scene);  // the pixels maskedMse leaves out
     for (int y = 0; y < ref.height; ++y)
         for (int x = 0; x < ref.width; ++x) {
-            if (nearLamp(ref, x, y)) continue;
+            if (lamp[size_t(y) * ref.width + x]) continue;
             double e = 0;
             for (int c = 0; c < 3; ++c) e += sqr(img.at(x, y)[c] - ref.at(x, y)[c]);
             all += e;
@@ -294,7 +295,7 @@ int main(int argc, char** argv) {
                 RenderResult r = render(scene, o);
                 cpu[v].push_back(threadCpuSeconds() - c0);
                 mse[v].push_back(maskedMse(r.image, ref, scene));
-                share[v].push_back(specularShare(r.image, ref, specularPixels));
+                share[v].push_back(specularShare(r.image, ref, specularPixels, scene));
                 rays[v].push_back(double(r.rays.closest + r.rays.shadow) / (double(r.passes) * ref.width * ref.height));
                 if (progressShown()) std::fprintf(stderr, "\r%s: seed %d/%d, %zu/%zu   ", name.c_str(), seed, seeds, v + 1, runs.size());
             }
