@@ -1689,15 +1689,15 @@ inline Vec3 sampleIR(const Scene& scene, const SampleOptions& opt, const PassDat
 //     max     w_s = 1 if no r_i > 1   (the slides' "choose p_X(pi) maximum"; ties, to 1e-4, share)
 //     uniform w_s = 1/(1 + #{r_i > 0})   (every strategy able to make the path, equally)
 // One walk serves all four heuristics and vcm's merges (section 8: one more term per vertex); its
-// O(k) per connection is a few percent of a sample, whose cost is its rays (SmallVCM's cached
-// recursion is page 10's exercise).
+// O(k) per connection is a few percent of a sample, most of whose time is shading and sampling
+// (Appendix A; SmallVCM's cached recursion is page 10's exercise).
 // A strategy that would connect at a delta vertex (mirror, glass) or hit a point light has density
 // 0 and is skipped (counting it gave single huge fireflies in Mitsuba #132, pbrt-v4 #326, SmallVCM
 // #5). Every other strategy crosses a specular vertex x_j inside one subpath: the delta cancels
-// between strategies, the geometry around it does not. The delta is one in the measure
+// between strategies; the geometry around it must be kept. The delta is one in the measure
 // eta^2 |cos| d omega, which mirrors and Snell's law keep (etendue) whichever way x_j is crossed;
 // left in pdfFwd and pdfRev are eta^2 |cos| at x_j (specularDensity) and the |cos|/d^2 of the
-// conversion to area at the next vertex. Through a chain a S..S b the chain's Jacobians cancel too:
+// conversion to area at the next vertex. Kept, they cancel along a chain a S..S b, all but its ends':
 //     p(a ... b) / p(b ... a) = [p_omega(a) / (eta_a^2 |cos_a|)] / [p_omega(b) / (eta_b^2 |cos_b|)].
 // pbrt stores the density after a delta event as 1 (--delta-density-one), dropping that |cos|/d^2:
 // for a caustic millimetres below a glass ball it is huge, and pbrt's convention hands the caustic
@@ -2139,17 +2139,19 @@ inline Vec3 sampleVCM(const Scene& scene, const SampleOptions& opt, const PassDa
 // A step proposes v from u with a symmetric T(u->v) = T(v->u) and accepts it with
 //     a(u->v) = min(1, f(v) T(v->u) / (f(u) T(u->v))) = min(1, f(v) / f(u)),
 // which gives detailed balance, f(u) T(u->v) a(u->v) = f(v) T(v->u) a(v->u): states distributed
-// as f/b stay so. Kelemen's two steps: large (probability --large-step), every number afresh,
-// finds new paths; small, each number moved by a normal of deviation --sigma (wrapped into [0,1)),
-// explores around a path that carries light. A number a state never drew is drawn when first used.
+// as f/b stay so. Two steps: large (probability --large-step), every number afresh, finds new
+// paths; small, each number moved by a normal of deviation --sigma (pbrt's kernel; Kelemen's is
+// exponential), wrapped into [0,1), explores around a path that carries light. A number a state
+// never drew is drawn when first used.
 // Expected-value splats (Veach 1997, 11.5): the proposal adds a h(v)/f(v) and the current state
 // (1-a) h(u)/f(u), whichever wins, so a rejected proposal still counts.
 // Start-up bias: a chain started anywhere follows f/b only after a while. A bootstrap of
 // --bootstrap independent samples estimates b (their mean f), and each chain starts from one of
-// them chosen in proportion to f, which follows f/b already, as far as the bootstrap saw every kind
-// of path (--fixed-start, the deliberate mistake: one fixed state). Large steps are independent
-// states too (Kelemen): each pass pools them into b for the next, so that b's error, which scales
-// the whole image, keeps falling, at the price of an O(1/N) bias far below the noise.
+// them chosen in proportion to f: with b the same bootstrap mean, E[b g(X_m)] = integral f g at every
+// step m (Veach), as far as the bootstrap saw every kind of path (--fixed-start, the deliberate
+// mistake: one fixed state). Large steps are independent states too: each pass pools them into b
+// for the next, so that b's error, which scales the whole image, keeps falling, at the price of an
+// O(1/N_b) bias far below the noise (notes, page 16).
 // --chains chains, each its own random stream, share a pass's W H mutations; their splats are
 // added in chain order, so the image does not depend on --threads.
 // mmlt (Hachisuka, Kaplanyan and Dachsbacher 2014; pbrt's MLT): the state also holds a path length
@@ -2339,7 +2341,7 @@ inline void metropolisStep(const SampleOptions& opt, PrimarySampleChain& chain, 
 // T are in double (products of densities span hundreds of decades); only their ratios are used.
 // Start (Veach's answer to start-up bias): a bootstrap of bdpt samples, every strategy's MIS-
 // weighted luminance w_{s,t} f/p_{s,t} a candidate; their mean is b = integral f, and a chain starts
-// from one chosen in proportion to it (sum_s w_s f/p_s p_s = f: distributed as f/b already).
+// from one chosen in proportion to it (sum_s w_s f/p_s p_s = f: the start is exact, as page 16's is).
 // Paths of one and two segments are a bdpt sample's, as Veach has them (--chain-short-paths).
 
 // A path of the chain: pL[i], pE[i] the area densities of x_i sampled from x_{i-1} (pL[0] the light

@@ -426,7 +426,6 @@ panels() {
 }
 
 figures() {
-  sixPanels 40 time
   [ -n "$NOTES" ] && python3 tests/diagrams.py  # the pages' path diagrams (figures/path-*.svg)
   thingap
   estimators

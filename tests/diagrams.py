@@ -228,7 +228,7 @@ def mirror():  # page 10M: a mirror unfolded, and one interface
     svg.text((90, 85), "a", LIGHT)
     svg.text((150, 250), "mirror", INK, size=15)
     svg.text((385, 125), "b", LIGHT, anchor="start")
-    svg.text((385, 335), "b' (b unfolded)", GREY, anchor="start", size=15)
+    svg.text((355, 340), "b' (b unfolded)", GREY, anchor="end", size=15)
     svg.text((230, 28), "a mirror: b lies where the straight line reaches b'", INK, size=16)
     svg.text((230, 50), "density at b: p_omega(a) |cos_b| / (d1 + d2)^2", INK, size=15)
     # Right: one interface, air above, water below.

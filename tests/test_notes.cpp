@@ -101,7 +101,8 @@ static std::vector<std::string> shellWords(const std::string& line) {
 static std::vector<std::string> quickArgs(const std::string& line) {
     std::vector<std::string> words = shellWords(line), args;
     auto intoBuild = [](const std::string& path) { return "build/tmp/notes/" + path.substr(path.find_last_of('/') + 1); };
-    auto isBudget = [](const std::string& w) { return w == "--spp" || w == "--time" || w == "--res"; };
+    bool hasRef = std::find(words.begin(), words.end(), "--ref") != words.end();  // its size is the reference's
+    auto isBudget = [&](const std::string& w) { return w == "--spp" || w == "--time" || (w == "--res" && !hasRef); };
     for (size_t i = 1; i < words.size(); ++i) {
         const std::string& w = words[i];
         bool hasValue = i + 1 < words.size();
@@ -122,7 +123,8 @@ static std::vector<std::string> quickArgs(const std::string& line) {
         if ((w == "--out" || w == "--strategies") && hasValue) { args.push_back(w); args.push_back(intoBuild(words[++i])); continue; }
         args.push_back(w.rfind("build/", 0) == 0 ? intoBuild(w) : w);  // an earlier command's output, as an input
     }
-    args.insert(args.end(), {"--spp", "1", "--res", "8x8", "--quiet"});
+    args.insert(args.end(), {"--spp", "1", "--quiet"});
+    if (!hasRef) args.insert(args.end(), {"--res", "8x8"});
     return args;
 }
 

@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
                     canvas[3 * (size_t(strip + gap + y) * canvasW + x0 + x) + c] = tile[3 * (size_t(y / zoom) * W + x / zoom) + c];
     };
     char white[64];
-    std::snprintf(white, sizeof white, "white: %.3g", largest);  // the relative RMSE drawn white
+    std::snprintf(white, sizeof white, "white = relative RMSE %.3g", largest);
     place(toSRGBBytes(ref, scene.exposure), 0, "reference", name);
     for (size_t m = 0; m < methods.size(); ++m) {
         Image map(W, H);
