@@ -258,6 +258,10 @@ efficiency() {
     { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'
       echo '|---|---|---|---|---|---|---|'; cat; } > build/metropolis-efficiency.md
   splice build/metropolis-efficiency.md "$RECORD" metropolis-efficiency
+  # Appendix A's roulette rows: bdpt's three rules, the choice bdpt's banner names
+  # shellcheck disable=SC2086
+  ./build/efficiency $budget --alternatives --only "bdpt --roulette" --scenes cornell,cornell-glass,indirect,glass-box > "$FIG/roulette.md"
+  splice "$FIG/roulette.md" "$RECORD" roulette
 }
 
 # make metropolis (tests/efficiency.cpp --metropolis): the Markov chains against bdpt, 8 seeds, into
