@@ -258,6 +258,10 @@ efficiency() {
     { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'
       echo '|---|---|---|---|---|---|---|'; cat; } > build/metropolis-efficiency.md
   splice build/metropolis-efficiency.md "$RECORD" metropolis-efficiency
+  grep -E '^\| (cornell|cornell-glass|indirect|glass-box) \| (pt|nee|nee --mis|bdpt)( --sampler random)? \|' "$FIG/efficiency.md" |
+    { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'
+      echo '|---|---|---|---|---|---|---|'; cat; } > build/samplers-efficiency.md
+  splice build/samplers-efficiency.md lecture_notes/appendix-c-quasi-random-numbers.md samplers-efficiency
   # Appendix A's roulette rows: bdpt's three rules, the choice bdpt's banner names
   # shellcheck disable=SC2086
   ./build/efficiency $budget --alternatives --only "bdpt --roulette" --scenes cornell,cornell-glass,indirect,glass-box > "$FIG/roulette.md"
@@ -266,7 +270,7 @@ efficiency() {
 
 # make metropolis (tests/efficiency.cpp --metropolis): the Markov chains against bdpt, 8 seeds, into
 # build/metropolis.md, and Veach's table of mlt's mutations (--mutations) into build/mutations.md;
-# with NOTES=1 also lecture_notes/figures/metropolis.md and mutations.md, spliced into page 17.
+# with NOTES=1 also lecture_notes/figures/metropolis.md and mutations.md, spliced into Appendix A.
 metropolisTable() {
   make -s build/efficiency
   echo "metropolis: 8 seeds of bdpt, mlt, pssmlt and mmlt on door-hidden, door-side and cornell, one thread: about 50 minutes"
@@ -277,8 +281,8 @@ metropolisTable() {
   [ -n "$NOTES" ] || return 0
   cp build/metropolis.md "$FIG/metropolis.md"
   cp build/mutations.md "$FIG/mutations.md"
-  splice "$FIG/metropolis.md" lecture_notes/17-veach-mutations.md metropolis
-  splice "$FIG/mutations.md" lecture_notes/17-veach-mutations.md mutations
+  splice "$FIG/metropolis.md" "$RECORD" metropolis
+  splice "$FIG/mutations.md" "$RECORD" mutations
 }
 
 plots() {  # the charts again from the runs' logs, without rendering (after a change of style)
@@ -531,7 +535,12 @@ ltfixed|lt, --fixed-ray-offset|--method lt --fixed-ray-offset"
 notes() {  # every figure of the pages, by the commands they show
   # The pages' commands write into build/notes/ (a student's run never touches the committed
   # figures); here each output that a page shows as figures/NAME is moved into $FIG instead.
+  # What each printed goes to $FIG/figure-commands.txt, after the command as the page shows it:
+  # the numbers a page quotes from its figures' runs (tests/test_notes.cpp checks them there).
+  local log=$FIG/figure-commands.txt
+  echo "# make figures: every command the pages show, as the page shows it (after \$), and what it printed" > "$log.tmp"
   grep -h '^\./bdpt ' lecture_notes/*.md | while read -r cmd; do
+    echo "\$ $cmd" >> "$log.tmp"
     for path in $(echo "$cmd" | grep -o 'build/notes/[^ ]*'); do
       name=${path#build/notes/}
       stem=${name%.*}
@@ -541,10 +550,11 @@ notes() {  # every figure of the pages, by the commands they show
     [ -n "$dir" ] && mkdir -p "$dir"
     mkdir -p build/notes
     echo "$cmd"
-    eval "$cmd --quiet --overwrite"  # NOTES=1 only: the pages' figures are the project's; eval: quoted lists
+    eval "$cmd --overwrite" 2>/dev/null | sed "s|$FIG/|build/notes/|g" | tee -a "$log.tmp"  # eval: quoted lists
     # --side-by-side's panels' PFMs: a page shows the labelled PNG, its --ratio reads them here
-    for pfm in "$FIG"/*-[1-8]-*.pfm; do [ -e "$pfm" ] && mv -f "$pfm" build/notes/; done
+    for pfm in "$FIG"/*-[1-8]-*.pfm; do if [ -e "$pfm" ]; then mv -f "$pfm" build/notes/; fi; done
   done
+  mv "$log.tmp" "$log"
 }
 
 "${1:-charts}" "${@:2}"

@@ -109,24 +109,6 @@ TEST_CASE("shading normals: the adjoint BSDF's albedo exceeds 1 at grazing angle
     CHECK(adjointAlbedo(scene, tilted, grazing, rng) < 0.81);
 }
 
-// Power out / power in of the floor of scenes/energy-generator.scene, as light tracing sees it:
-// the throughput of every light path arriving at the floor, and after one Importance-mode bounce.
-static double floorPowerRatio(const Scene& scene, int paths) {
-    Rng rng = makeRng(12, 0, 0);
-    double in = 0, out = 0;
-    for (int i = 0; i < paths; ++i) {
-        EmissionSample es = sampleEmission(scene, rng);
-        Ray ray = spawnRay(es.point.sp, es.dir);
-        Hit hit = intersect(scene, ray);
-        if (!hit.found() || scene.shapes[hit.shape].emission.x > 0) continue;
-        SurfacePoint sp = surfaceAt(scene, ray, hit);
-        in += es.weight.x;
-        BsdfSample bs;
-        if (sampleBsdf(scene, sp, -ray.d, Transport::Importance, rng, bs)) out += es.weight.x * bs.weight.x;
-    }
-    return out / in;
-}
-
 TEST_CASE("energy generator: a floor with a constant tilted shading normal reflects more power than it receives") {
     Scene tilted = sceneAt("scenes/energy-generator.scene", 48, 36);
     double ratio = floorPowerRatio(tilted, 200000);
