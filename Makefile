@@ -115,12 +115,12 @@ efficiency: bdpt
 
 # The Metropolis methods against bdpt where they should win (door-hidden) and lose (cornell), 8
 # seeds, at 64x64 with 1,024 and 128x128 with 256 mutations per pixel: build/metropolis.md
-# (NOTES=1: also page 17's table).
+# (NOTES=1: also Appendix A's tables).
 metropolis: bdpt
 	+tests/charts.sh metropolisTable
 
 figures: bdpt build/estimators
-	@echo "make figures: rewrites lecture_notes/figures/ and the tables in the pages (committed): about 50 minutes"
+	@echo "make figures: rewrites lecture_notes/figures/ and the tables in the pages (committed): about 35 minutes"
 	+NOTES=1 tests/charts.sh charts
 	+NOTES=1 tests/charts.sh efficiency
 	+NOTES=1 tests/charts.sh figures
@@ -139,7 +139,7 @@ help:
 	@echo "make metropolis mlt, pssmlt and mmlt against bdpt, 8 seeds, two sizes: build/metropolis.md; mlt's mutations: build/mutations.md (about 50 minutes)"
 	@echo "make bench      our BVH against Embree, cost per sample and where it goes: printed only (about 4 minutes)"
 	@echo "                FULL=1 after charts, efficiency or bench: the notes' budgets (12, 25 and 15 minutes)"
-	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 50 minutes)"
+	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 35 minutes)"
 	@echo "make refs       REWRITES the committed references in scenes/refs/ (about 95 minutes)"
 	@echo "make test-refs  REWRITES the tests' own references in tests/refs/ (about 3 minutes)"
 	@echo "make web        the page in the browser, methods side by side: build/web/ (about 30 s; needs emscripten)"
