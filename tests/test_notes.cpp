@@ -853,7 +853,7 @@ static std::vector<RunQuote> runQuoteTable() {
                ".mis:%g} ({" + c + ".mis_pct:%g}%) | {" + c + ".merging:%g} ({" + c + ".merging_pct:%g}%) | {" + c + ".rest:%g} ({" + c +
                ".rest_pct:%g}%) |";
     };
-    const std::string radius = "./bdpt scenes/sds-ior1.scene --method vcm --res 64x64 --spp 64 --radius 0.07 --ref scenes/refs/sds-ior1.pfm --out build/notes/radius.png";
+    const std::string radius = "./bdpt scenes/sds-ior1.scene --method vcm --res 64x64 --spp 32 --radius 0.07 --ref scenes/refs/sds-ior1.pfm --out build/notes/radius.png";
     const std::string door = "./bdpt scenes/door.scene --method vcm --res 64x64 --spp 64 --radius 3 --ref scenes/refs/door.pfm --out build/notes/door-vcm.png";
     const std::string example = "./bdpt scenes/cornell.scene --method pt --spp 64 --res 64x64 --seed 1 --ref scenes/refs/cornell.pfm --out build/notes/example-pt.png";
     const std::string ptDirect = "./bdpt scenes/cornell.scene --method pt --maxdepth 1 --res 24x24 --spp 4 --ref tests/refs/cornell-direct.pfm --out build/notes/pt-direct.png";
@@ -889,11 +889,11 @@ static std::vector<RunQuote> runQuoteTable() {
          "--rr-start", {"0", "1", "2", "3", "5", "8"},
          {rrRow("0", 0), rrRow("1", 1), rrRow("2", 2), rrRow("3 (default)", 3), rrRow("5", 4), rrRow("8", 5),
           "from {0.rays:%.2f:0} to {0.rays:%.2f:5} rays per sample, RMSE from {0.rmse:%.4g:0} to {0.rmse:%.4g:5}"}},
-        {p9, {"./bdpt scenes/glass-box.scene --method bdpt --roulette throughput --res 64x64 --spp 64 --out build/notes/rr-throughput.png"},
+        {p9, {"./bdpt scenes/glass-box.scene --method bdpt --roulette throughput --res 64x64 --spp 16 --out build/notes/rr-throughput.png"},
          "--roulette", {"throughput", "albedo", "off"},
          {"Rays per sample: throughput {0.rays:%.2f:0}, albedo {0.rays:%.2f:1}, off {0.rays:%.2f:2}, and the time follows the rays; "
           "the means agree ({0.mean:%g:0}, {0.mean:%g:1}, {0.mean:%g:2})"}},
-        {p9, {"./bdpt build/glossy.scene --method nee --mis --res 128x128 --spp 256 --out build/glossy-ref.png"}, "", {}, {}},
+        {p9, {"./bdpt build/glossy.scene --method nee --mis --res 128x128 --spp 128 --out build/glossy-ref.png"}, "", {}, {}},
         {p9, {glossy, glossy + " || --mis"}, "--seed", seeds,
          {"RMSE {0.rmse:%.3f:min}-{0.rmse:%.3f:max} without `--mis`, {1.rmse:%.4f:min}-{1.rmse:%.4f:max} with it (seeds 1 to 4, "
           "default sampler), at the same {0.rays:%.2f:0} rays per sample"}},
