@@ -60,6 +60,15 @@ struct Quote {
     std::string page, text;
 };
 
+// Each quote stands in its page as built.
+static void checkQuotesStand(const std::vector<Quote>& quotes) {
+    for (const Quote& q : quotes) {
+        CAPTURE(q.page);
+        CAPTURE(q.text);
+        CHECK(flatPage(q.page).find(q.text) != std::string::npos);
+    }
+}
+
 // The renderer's source: the lecture's file and the classroom's, which the notes cite too.
 static std::string rendererSource() {
     return slurp("bdpt.cpp") + slurp("classroom/classroom.cpp") + slurp("classroom/figures.h") + slurp("classroom/checks.h");
@@ -472,7 +481,7 @@ TEST_CASE("Appendix A quotes the reference check's range of ratios as the genera
     // every chart's lowest curve ends well above its reference's noise (a reference then adds
     // under 8% to a charted RMSE): below that a chart measures the reference, not the method
     CHECK(*std::min_element(ratios.begin(), ratios.end()) >= 2.5);
-    for (const auto& q : referenceQuotes()) CHECK(flatPage(q.page).find(q.text) != std::string::npos);
+    checkQuotesStand(referenceQuotes());
 }
 
 
@@ -959,54 +968,30 @@ TEST_CASE("the numbers the pages quote from runs are what the commands they prin
             CAPTURE(command);
             CHECK(flatPage(q.page).find(printedPart(command)) != std::string::npos);
         }
-    for (const Quote& q : runQuotes()) {
-        CAPTURE(q.page);
-        CAPTURE(q.text);
-        CHECK(flatPage(q.page).find(q.text) != std::string::npos);
-    }
+    checkQuotesStand(runQuotes());
 }
 
 TEST_CASE("the efficiencies the pages quote are the generated table's (make figures)") {
-    for (const Quote& q : efficiencyQuotes()) {
-        CAPTURE(q.page);
-        CAPTURE(q.text);
-        CHECK(flatPage(q.page).find(q.text) != std::string::npos);
-    }
+    checkQuotesStand(efficiencyQuotes());
 }
 
 TEST_CASE("the slopes and biases the pages quote are the failure table's (make figures)") {
-    for (const Quote& q : failureQuotes()) {
-        CAPTURE(q.page);
-        CAPTURE(q.text);
-        CHECK(flatPage(q.page).find(q.text) != std::string::npos);
-    }
+    checkQuotesStand(failureQuotes());
 }
 
 static std::vector<Quote> measuredQuotes();
 static std::vector<Quote> metropolisQuotes();
 
 TEST_CASE("the numbers the pages quote from make metropolis's tables are the tables'") {
-    for (const Quote& q : metropolisQuotes()) {
-        CAPTURE(q.page);
-        CAPTURE(q.text);
-        CHECK(flatPage(q.page).find(q.text) != std::string::npos);
-    }
+    checkQuotesStand(metropolisQuotes());
 }
 
 TEST_CASE("the numbers the pages quote from the tests' measurements are what they measure") {
-    for (const Quote& q : measuredQuotes()) {
-        CAPTURE(q.page);
-        CAPTURE(q.text);
-        CHECK(flatPage(q.page).find(q.text) != std::string::npos);
-    }
+    checkQuotesStand(measuredQuotes());
 }
 
 TEST_CASE("page 10's four paths: the numbers its text quotes are the densities' (tests/estimators.cpp)") {
-    for (const Quote& q : estimatorQuotes()) {
-        CAPTURE(q.page);
-        CAPTURE(q.text);
-        CHECK(flatPage(q.page).find(q.text) != std::string::npos);
-    }
+    checkQuotesStand(estimatorQuotes());
 }
 
 // A page's flat text with all but its prose blanked, length kept: code blocks and spans,
