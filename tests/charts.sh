@@ -241,6 +241,13 @@ GP
   echo "chart $FIG/error-vs-time-samplers-$variant.png"
 }
 
+# efficiencyRows PATTERN: the efficiency table's rows that match PATTERN, under its header.
+efficiencyRows() {
+  grep -E "$1" "$FIG/efficiency.md" |
+    { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'
+      echo '|---|---|---|---|---|---|---|'; cat; }
+}
+
 # make efficiency (tests/efficiency.cpp): its table in build/efficiency.md; with NOTES=1 also
 # lecture_notes/figures/efficiency.md, spliced into Appendix A, and page 16's rows of it.
 efficiency() {
@@ -254,13 +261,9 @@ efficiency() {
   [ -n "$NOTES" ] || return 0
   cp build/efficiency.md "$FIG/efficiency.md"
   splice "$FIG/efficiency.md" "$RECORD" efficiency
-  grep -E '^\| (door|cornell|cornell-glass|glass-box) \| (nee --mis|lt|bdpt|mlt|pssmlt|mmlt) \|' "$FIG/efficiency.md" |
-    { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'
-      echo '|---|---|---|---|---|---|---|'; cat; } > build/metropolis-efficiency.md
+  efficiencyRows '^\| (door|cornell|cornell-glass|glass-box) \| (nee --mis|lt|bdpt|mlt|pssmlt|mmlt) \|' > build/metropolis-efficiency.md
   splice build/metropolis-efficiency.md "$RECORD" metropolis-efficiency
-  grep -E '^\| (cornell|cornell-glass|indirect|glass-box) \| (pt|nee|nee --mis|bdpt)( --sampler random)? \|' "$FIG/efficiency.md" |
-    { echo '| scene | method | MSE | CPU-s | rays/sample | efficiency vs nee --mis | MSE share seen via mirror or glass |'
-      echo '|---|---|---|---|---|---|---|'; cat; } > build/samplers-efficiency.md
+  efficiencyRows '^\| (cornell|cornell-glass|indirect|glass-box) \| (pt|nee|nee --mis|bdpt)( --sampler random)? \|' > build/samplers-efficiency.md
   splice build/samplers-efficiency.md lecture_notes/appendix-c-quasi-random-numbers.md samplers-efficiency
   # Appendix A's roulette rows: bdpt's three rules, the choice bdpt's banner names
   # shellcheck disable=SC2086

@@ -982,6 +982,19 @@ TEST_CASE("the slopes and biases the pages quote are the failure table's (make f
 static std::vector<Quote> measuredQuotes();
 static std::vector<Quote> metropolisQuotes();
 
+TEST_CASE("Appendix A's roulette table: albedo roulette, bdpt's, is the most efficient of the three rules on every scene") {
+    std::map<std::string, std::map<std::string, double>> efficiency;  // scene -> rule -> efficiency
+    for (const auto& c : tableRows("lecture_notes/figures/roulette.md"))
+        if (c.size() >= 7 && c[1].rfind("bdpt --roulette ", 0) == 0) efficiency[c[0]][c[1].substr(16, c[1].find(' ', 16) - 16)] = std::stod(c[5]);
+    REQUIRE(efficiency.size() == 4);
+    for (auto& [scene, rules] : efficiency) {
+        CAPTURE(scene);
+        REQUIRE(rules.size() == 3);
+        CHECK(rules["albedo"] > rules["throughput"]);
+        CHECK(rules["albedo"] > rules["off"]);
+    }
+}
+
 TEST_CASE("the numbers the pages quote from make metropolis's tables are the tables'") {
     checkQuotesStand(metropolisQuotes());
 }
