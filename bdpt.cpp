@@ -3,11 +3,12 @@
 // (Realistic Image Synthesis; Slusallek, Myszkowski, Singh), side by side, in one file.
 //
 // Read it top to bottom with the slides open:
-//   1 math & random numbers   2 geometry            3 BVH (appendix B; skip it on a first read)
+//   1 math & random numbers   2 geometry            3 the scene and its two queries
 //   4 materials (BSDFs)       5 lights              6 camera
 //   7 integrators: the slides' panels (a)-(f): pt, nee, lt, ir, bdpt
 //   8 later: the slides' "later" methods, vcm and Metropolis (pssmlt, mmlt, mlt)
 //   9 film & rendering loop  10 scene file         11 command line
+//   appendices, at the end: B the BVH, C Sobol points fast (the notes' appendices B and C)
 // Units: radiance L, intensity I, power Phi, importance W_e. Directions point away from surfaces.
 // It compiles alone: g++ -O2 -std=c++17 -pthread bdpt.cpp -lstb. The classroom's tools (side by
 // side, live images, error against a reference, figures) are in classroom/, which includes it.
@@ -81,7 +82,9 @@ inline float sqr(float x) { return x * x; }
 
 // PCG32 (O'Neill): small state, good statistics, and independent streams: every pixel and pass has
 // its own generator, and the image does not depend on the number of threads. Every number a method
-// draws passes Rng::uniform, where Metropolis (section 8 (h)) hands a walker its chain's numbers.
+// draws passes Rng::uniform, which has three sources: PCG32 itself; a Sobol point (below), whose
+// coordinates it hands out in order; and a Metropolis chain's state (section 8 (h), replay), which
+// hands a walker its chain's numbers so that a mutation can change them.
 struct PrimaryStream;
 float replayUniform(PrimaryStream& stream);
 constexpr uint32_t kLowDiscrepancyDimensions = 32;  // below: dimensions drawn from a Sobol point
@@ -198,60 +201,6 @@ inline uint32_t scrambleDigits(uint32_t digits, uint32_t seed) {
     digits ^= digits * 0x8D22F6E6u;
     return digits;
 }
-// Dimension d's scramble seed: step d+1 of an LCG from the stream's key, the steps composed at compile time.
-struct LcgJump {
-    uint64_t mul, add;
-};
-struct LcgJumps {
-    LcgJump step[kLowDiscrepancyDimensions];
-};
-constexpr LcgJumps makeLcgJumps() {
-    LcgJumps J{};
-    uint64_t mul = 1, add = 0;
-    for (uint32_t d = 0; d < kLowDiscrepancyDimensions; ++d) {
-        mul *= 6364136223846793005ULL;
-        add = add * 6364136223846793005ULL + 1442695040888963407ULL;
-        J.step[d] = {mul, add};
-    }
-    return J;
-}
-constexpr LcgJumps kScrambleSeeds = makeLcgJumps();
-
-// Digit order back to a fraction's 24 leading digits: the bits' order reversed a byte at a time.
-struct ByteReversal {
-    uint8_t reversed[256];
-};
-constexpr ByteReversal makeByteReversal() {
-    ByteReversal R{};
-    for (uint32_t i = 0; i < 256; ++i) R.reversed[i] = uint8_t(reverseBits(i) >> 24);
-    return R;
-}
-constexpr ByteReversal kByteReversal = makeByteReversal();
-inline uint32_t fractionDigits(uint32_t digits) {
-    const uint8_t* r = kByteReversal.reversed;
-    return uint32_t(r[digits & 255]) << 16 | uint32_t(r[(digits >> 8) & 255]) << 8 | r[(digits >> 16) & 255];
-}
-
-// Sample `index`'s point, unscrambled: the xor of C_d's columns picked by index's bits, four dimensions at once.
-inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
-    typedef uint32_t FourDimensions __attribute__((vector_size(16)));
-    FourDimensions point[kLowDiscrepancyDimensions / 4] = {};
-    for (uint32_t i = index; i; i &= i - 1) {  // bit k of index set: column k of every dimension
-        const uint32_t* column = kSobol.column[__builtin_ctz(i)];
-        for (uint32_t q = 0; q < kLowDiscrepancyDimensions / 4; ++q) {
-            FourDimensions c;
-            std::memcpy(&c, column + 4 * q, sizeof c);
-            point[q] ^= c;
-        }
-    }
-    std::memcpy(digits, point, sizeof point);
-}
-// Every pixel's camera stream draws point `pass` in pass `pass`: each thread keeps the last.
-inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
-    thread_local uint32_t cachedIndex = ~0u, cached[kLowDiscrepancyDimensions];
-    if (index != cachedIndex) sobolPoint(index, cached), cachedIndex = index;
-    std::copy(cached, cached + kLowDiscrepancyDimensions, digits);
-}
 // A stream's own order of the sequence (Burley 2020): index's bits scrambled like a coordinate's
 // digits, from the top: the first 2^m indices map onto one aligned block of 2^m (a net) in a random
 // order. Two streams whose numbers meet in one path (bdpt's camera and light subpaths, a pixel and
@@ -262,16 +211,18 @@ inline uint32_t shuffledIndex(uint32_t index, uint32_t seed) {
     uint32_t low = reverseBits(scrambleDigits(reverseBits(index & 0xFFFFu), seed)) & 0xFFFFu;
     return (index & ~0xFFFFu) | low;
 }
-// Coordinates first..first+3, scrambled by their own seeds (not with --no-scramble, the mistake),
-// as fractions; uniform() asks for four at a time: four independent hashes overlap.
-inline void Rng::scrambleCoordinates(uint32_t first) {
-    for (uint32_t d = first; d < first + 4; ++d) {
-        const LcgJump& jump = kScrambleSeeds.step[d];
-        uint32_t seed = uint32_t((jump.mul * scrambleKey + jump.add) >> 32);
-        point[d] = fractionDigits(scrambled ? scrambleDigits(point[d], seed) : point[d]);
-    }
+// Coordinate d of point `index`, its digits scrambled by `seed`, as a fraction of 24 digits: the
+// definition above, word for word. Appendix C computes the same numbers fast (a point's 32
+// coordinates at once, the seeds composed at compile time); test_sampler holds the two equal.
+inline float sobolSample(uint32_t index, uint32_t d, uint32_t seed) {
+    uint32_t digits = 0;
+    for (uint32_t k = 0; k < 32; ++k)
+        if ((index >> k) & 1) digits ^= kSobol.column[k][d];  // x_d(i) = C_d i
+    return float(reverseBits(scrambleDigits(digits, seed)) >> 8) * 0x1p-24f;
 }
-
+// Appendix C: point `index`'s unscrambled digits, all dimensions; the same cached per thread.
+inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]);
+inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]);
 // Orthonormal frame around a unit normal (Duff et al. 2017), to express BSDFs locally.
 struct Frame {
     Vec3 s, t, n;
@@ -459,7 +410,8 @@ inline Ray shadowRay(const SurfacePoint& from, const SurfacePoint& to) {
     return {o, oe / dist, dist * (1 - 1e-4f)};
 }
 
-// What else a scene file describes: plain data; the sections below give it behaviour.
+// == 3. The scene, and the two queries every method makes of it ==============================
+// What a scene file describes besides shapes: plain data; the sections below give it behaviour.
 struct Material {
     enum Type { Diffuse, Mirror, Glass, Glossy } type = Diffuse;
     std::string name;
@@ -484,300 +436,11 @@ struct Camera {
     float imageArea = 0;           // A: area of the image rectangle at distance 1 from the pinhole
 };
 
-// == 3. Acceleration: a wide BVH ===============================================================
-// Not a slide's topic but appendix B's: on a first read, skip to `struct Scene` at the end of this
-// section, whose intersect() and occluded() are all the methods ask of it. A bounding volume
-// hierarchy finds the closest of N shapes in about log N box tests instead of N shape tests.
-// Build: binned SAH. Split a set of shapes where the surface area heuristic
-//   cost = A(left)/A * N(left) + A(right)/A * N(right)
-// is smallest, over 16 bins of centroids per axis; split the child with the largest area again
-// until a node has W children (W = 4 with SSE, 8 with AVX). A leaf is one shape, in leaf order:
-// the W-wide box test screens W shapes at once, and a shape's exact test reads only what its kind
-// needs; incoherent rays wait on memory, not arithmetic (appendix B; `make bench` races Embree).
-// Traverse: each node keeps its W child boxes as structure-of-arrays, so one SIMD slab test checks
-// all children; closest hit visits them front to back and skips boxes beyond the hit so far; any
-// hit (shadow rays) stops at the first. A zero direction component gives an infinite inverse, and
-// 0*inf = NaN where the origin lies on a slab's plane: the operand order of min/max below ignores
-// it (SSE returns the second operand on NaN). Box exits are widened by 1+2gamma_3 so that
-// rounding never loses a hit at a box edge (pbrt).
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
+// A bounding volume hierarchy over the shapes answers both queries in about log N box tests
+// instead of N shape tests: Appendix B, at the end of the file, builds and traverses it.
+struct Bvh;
 
-struct Aabb {
-    Vec3 lo{kInf}, hi{-kInf};
-    void grow(Vec3 p) {
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-    void grow(const Aabb& b) {
-        if (b.lo.x <= b.hi.x) grow(b.lo), grow(b.hi);  // an empty box (an empty SAH bin) adds nothing
-    }
-    float halfArea() const {
-        Vec3 d = hi - lo;
-        return lo.x > hi.x ? 0 : d.x * d.y + d.y * d.z + d.z * d.x;
-    }
-};
-
-inline Aabb shapeBounds(const Shape& s) {
-    Aabb b;
-    if (s.type == Shape::Sphere) {
-        b.grow(s.p - Vec3(s.radius));
-        b.grow(s.p + Vec3(s.radius));
-    } else {
-        for (Vec3 c : {s.p, s.p + s.u, s.p + s.v, s.p + s.u + s.v}) b.grow(c);
-    }
-    return b;
-}
-
-// What the leaves hold, in leaf order: just enough to intersect (a sphere 16 bytes, a quad 48).
-struct SpherePrimitive { Vec3 centre; float radius; };
-struct QuadPrimitive { Vec3 q, u, v, w; };  // corner, edges, w = n/(n.n)
-
-// Node width: 8 children with AVX (make NATIVE=1), else 4 (SSE); SIMD(op) names that width's intrinsic.
-#if defined(__AVX__)
-constexpr int kWidth = 8;
-using Lanes = __m256;
-#define SIMD(op) _mm256_##op
-inline Lanes lessEqual(Lanes a, Lanes b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
-#elif defined(__SSE2__)
-constexpr int kWidth = 4;
-using Lanes = __m128;
-#define SIMD(op) _mm_##op
-inline Lanes lessEqual(Lanes a, Lanes b) { return _mm_cmple_ps(a, b); }
-#else
-constexpr int kWidth = 4;
-#endif
-
-struct alignas(64) BvhNode {
-    float box[6][kWidth];   // [min x, max x, min y, max y, min z, max z][child]; empty child: min > max
-    int32_t child[kWidth];  // >= 0 inner node index; < 0 a leaf: ~(primitive index * 2 + is sphere)
-};
-
-struct Bvh {
-    std::vector<BvhNode> nodes;
-    std::vector<SpherePrimitive> spheres;
-    std::vector<QuadPrimitive> quads;
-    std::vector<int32_t> sphereShape, quadShape;  // the scene's shape index of each primitive
-};
-
-struct BvhBuilder {
-    struct Ref {  // one shape during the build; partitioned in place, so every pass is sequential
-        Aabb box;
-        Vec3 centroid;
-        int shape;
-    };
-    std::vector<Ref> refs;
-    Bvh& bvh;
-    const std::vector<Shape>& shapes;
-
-    // Leaves are made in leaf order, so a node's leaf children lie side by side in memory.
-    int32_t leafCode(int shape) {
-        const Shape& s = shapes[shape];
-        if (s.type == Shape::Sphere) {
-            bvh.spheres.push_back({s.p, s.radius});
-            bvh.sphereShape.push_back(shape);
-            return ~int32_t((bvh.spheres.size() - 1) * 2 + 1);
-        }
-        bvh.quads.push_back({s.p, s.u, s.v, quadW(s.u, s.v)});
-        bvh.quadShape.push_back(shape);
-        return ~int32_t((bvh.quads.size() - 1) * 2);
-    }
-
-    Aabb rangeBounds(int b, int e) const {
-        Aabb box;
-        for (int i = b; i < e; ++i) box.grow(refs[i].box);
-        return box;
-    }
-    // Binned SAH on all three axes; returns the right half's first index and the halves' boxes.
-    int split(int b, int e, Aabb& leftBox, Aabb& rightBox) {
-        constexpr int kBins = 16;
-        Aabb cb;
-        for (int i = b; i < e; ++i) cb.grow(refs[i].centroid);
-        Aabb bin[3][kBins];
-        int count[3][kBins] = {{0}};
-        float scale[3];
-        for (int a = 0; a < 3; ++a) scale[a] = cb.hi[a] > cb.lo[a] ? kBins / (cb.hi[a] - cb.lo[a]) : 0;
-        auto binOf = [&](const Ref& r, int a) { return std::min(kBins - 1, int((r.centroid[a] - cb.lo[a]) * scale[a])); };
-        for (int i = b; i < e; ++i)
-            for (int a = 0; a < 3; ++a) {
-                int k = binOf(refs[i], a);
-                bin[a][k].grow(refs[i].box);
-                ++count[a][k];
-            }
-        float bestCost = kInf;
-        int bestAxis = -1, bestBin = 0;
-        for (int a = 0; a < 3; ++a) {
-            if (scale[a] == 0) continue;
-            float rightArea[kBins];
-            int rightCount[kBins];
-            Aabb acc;
-            int n = 0;
-            for (int k = kBins - 1; k > 0; --k) {
-                acc.grow(bin[a][k]);
-                n += count[a][k];
-                rightArea[k] = acc.halfArea();
-                rightCount[k] = n;
-            }
-            acc = Aabb();
-            n = 0;
-            for (int k = 0; k < kBins - 1; ++k) {
-                acc.grow(bin[a][k]);
-                n += count[a][k];
-                float cost = acc.halfArea() * n + rightArea[k + 1] * rightCount[k + 1];
-                if (n > 0 && rightCount[k + 1] > 0 && cost < bestCost) { bestCost = cost; bestAxis = a; bestBin = k; }
-            }
-        }
-        if (bestAxis < 0) {  // all centroids in one point: split by count
-            int mid = (b + e) / 2;
-            leftBox = rangeBounds(b, mid);
-            rightBox = rangeBounds(mid, e);
-            return mid;
-        }
-        leftBox = rightBox = Aabb();
-        for (int k = 0; k < kBins; ++k) (k <= bestBin ? leftBox : rightBox).grow(bin[bestAxis][k]);
-        return int(std::partition(refs.begin() + b, refs.begin() + e, [&](const Ref& r) { return binOf(r, bestAxis) <= bestBin; }) -
-                   refs.begin());
-    }
-    int build(int b, int e, const Aabb& box) {
-        int index = int(bvh.nodes.size());
-        bvh.nodes.emplace_back();
-        struct Range { int b, e; Aabb box; } r[kWidth];
-        int n = 1;
-        r[0] = {b, e, box};
-        while (n < kWidth) {  // open the largest child that is more than one shape
-            int pick = -1;
-            for (int i = 0; i < n; ++i)
-                if (r[i].e - r[i].b > 1 && (pick < 0 || r[i].box.halfArea() > r[pick].box.halfArea())) pick = i;
-            if (pick < 0) break;
-            Aabb left, right;
-            int mid = split(r[pick].b, r[pick].e, left, right);
-            r[n++] = {mid, r[pick].e, right};
-            r[pick] = {r[pick].b, mid, left};
-        }
-        BvhNode node;
-        for (int i = 0; i < kWidth; ++i) {
-            Aabb childBox = i < n ? r[i].box : Aabb();
-            for (int a = 0; a < 3; ++a) {
-                node.box[2 * a][i] = childBox.lo[a];
-                node.box[2 * a + 1][i] = childBox.hi[a];
-            }
-            node.child[i] = i < n && r[i].e - r[i].b == 1 ? leafCode(refs[r[i].b].shape) : 0;
-        }
-        for (int i = 0; i < n; ++i)  // inner children after all the leaves, which stay side by side
-            if (r[i].e - r[i].b > 1) node.child[i] = build(r[i].b, r[i].e, r[i].box);
-        bvh.nodes[index] = node;
-        return index;
-    }
-};
-
-inline Bvh buildBvh(const std::vector<Shape>& shapes) {
-    Bvh bvh;
-    if (shapes.empty()) return bvh;
-    BvhBuilder builder{{}, bvh, shapes};
-    builder.refs.reserve(shapes.size());
-    for (size_t i = 0; i < shapes.size(); ++i) {
-        Aabb box = shapeBounds(shapes[i]);
-        builder.refs.push_back({box, (box.lo + box.hi) * 0.5f, int(i)});
-    }
-    bvh.nodes.reserve(2 * shapes.size() / (kWidth - 1) + 1);
-    builder.build(0, int(shapes.size()), builder.rangeBounds(0, int(shapes.size())));
-    return bvh;
-}
-
-// The ray's constants for the slab tests.
-struct RayBoxTest {
-    int nearX, nearY, nearZ;   // which row of BvhNode::box is the entry plane on each axis
-#if defined(__SSE2__)
-    Lanes ox, oy, oz, ix, iy, iz;
-#else
-    Vec3 o, inv;
-#endif
-    explicit RayBoxTest(const Ray& r) {
-        Vec3 inv(1 / r.d.x, 1 / r.d.y, 1 / r.d.z);  // +-inf for +-0
-        nearX = inv.x >= 0 ? 0 : 1;
-        nearY = inv.y >= 0 ? 2 : 3;
-        nearZ = inv.z >= 0 ? 4 : 5;
-#if defined(__SSE2__)
-        ox = SIMD(set1_ps)(r.o.x), oy = SIMD(set1_ps)(r.o.y), oz = SIMD(set1_ps)(r.o.z);
-        ix = SIMD(set1_ps)(inv.x), iy = SIMD(set1_ps)(inv.y), iz = SIMD(set1_ps)(inv.z);
-#else
-        o = r.o;
-        this->inv = inv;
-#endif
-    }
-    // Bit i set when the ray meets child i's box within (0, tmax); tEntry receives the entry distances.
-    int test(const BvhNode& n, float tmax, float tEntry[kWidth]) const {
-        constexpr float kWiden = 1 + 2 * (3 * 0x1p-24f) / (1 - 3 * 0x1p-24f);  // 1 + 2 gamma_3
-        // Each candidate (possibly NaN) is the first operand, the running bound the second.
-#if defined(__SSE2__)
-        auto slab = [&](int row, Lanes o, Lanes inv) { return SIMD(mul_ps)(SIMD(sub_ps)(SIMD(load_ps)(n.box[row]), o), inv); };
-        Lanes t0 = SIMD(max_ps)(slab(nearZ, oz, iz), SIMD(setzero_ps)());
-        t0 = SIMD(max_ps)(slab(nearX, ox, ix), SIMD(max_ps)(slab(nearY, oy, iy), t0));
-        Lanes t1 = SIMD(min_ps)(slab(nearZ ^ 1, oz, iz), SIMD(set1_ps)(tmax));
-        t1 = SIMD(min_ps)(slab(nearX ^ 1, ox, ix), SIMD(min_ps)(slab(nearY ^ 1, oy, iy), t1));
-        SIMD(storeu_ps)(tEntry, t0);
-        return SIMD(movemask_ps)(lessEqual(t0, SIMD(mul_ps)(t1, SIMD(set1_ps)(kWiden))));
-#else
-        int mask = 0;
-        for (int i = 0; i < kWidth; ++i) {
-            // fmax/fmin ignore a NaN operand, like the operand order of the SIMD paths.
-            float t0 = std::fmax(std::fmax((n.box[nearX][i] - o.x) * inv.x, (n.box[nearY][i] - o.y) * inv.y),
-                                 std::fmax((n.box[nearZ][i] - o.z) * inv.z, 0.0f));
-            float t1 = std::fmin(std::fmin((n.box[nearX ^ 1][i] - o.x) * inv.x, (n.box[nearY ^ 1][i] - o.y) * inv.y),
-                                 std::fmin((n.box[nearZ ^ 1][i] - o.z) * inv.z, tmax));
-            tEntry[i] = t0;
-            mask |= (t0 <= t1 * kWiden) << i;
-        }
-        return mask;
-#endif
-    }
-};
-
-// Closest hit: nearest child first, each hit shortening the ray; any hit (shadow rays): the first ends it.
-template <bool anyHit>
-inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
-    Hit hit;
-    if (bvh.nodes.empty()) return hit;
-    RayBoxTest boxTest(ray);
-    Ray r = ray;
-    struct Entry { int32_t node; float t; } stack[64 * kWidth];  // at most W-1 more per level
-    int top = 0;
-    stack[top++] = {0, 0};
-    while (top > 0) {
-        Entry e = stack[--top];
-        if (!anyHit && e.t > r.tmax) continue;  // a closer hit was found since this was pushed
-        const BvhNode& n = bvh.nodes[e.node];
-        float tEntry[kWidth];
-        int base = top;
-        for (int mask = boxTest.test(n, r.tmax, tEntry); mask; mask &= mask - 1) {
-            int i = __builtin_ctz(mask);
-            if (n.child[i] < 0) {  // a leaf: test its shape now, which may shorten the ray
-                int code = ~n.child[i], k = code >> 1;
-                float t = code & 1 ? intersectSphere(bvh.spheres[k].centre, bvh.spheres[k].radius, r)
-                                   : intersectQuad(bvh.quads[k].q, bvh.quads[k].u, bvh.quads[k].v, bvh.quads[k].w, r);
-                if (t < r.tmax) {
-                    if (anyHit) return {t, 0};  // a shadow ray: that something is there is all it asks
-                    r.tmax = hit.t = t;
-                    hit.shape = code & 1 ? bvh.sphereShape[k] : bvh.quadShape[k];
-                }
-                continue;
-            }
-            // Ask for the child's cache lines now, long before it is popped (large scenes wait on them).
-            const char* child = reinterpret_cast<const char*>(&bvh.nodes[n.child[i]]);
-            for (size_t line = 0; line < sizeof(BvhNode); line += 64) __builtin_prefetch(child + line);
-            // A shadow ray's hits do not shorten it: sorting its children costs more than it saves.
-            if (anyHit) { stack[top++] = {n.child[i], tEntry[i]}; continue; }
-            // Insert so that the nearest child ends on top of the stack (front to back).
-            int j = top++;
-            while (j > base && stack[j - 1].t < tEntry[i]) { stack[j] = stack[j - 1]; --j; }
-            stack[j] = {n.child[i], tEntry[i]};
-        }
-    }
-    return hit;
-}
-
-// -- The scene, and the two queries every method makes of it: the closest hit, and a shadow ray.
+// The scene, and the two queries: the closest hit, and a shadow ray.
 struct Scene {
     std::string file;
     Camera camera;
@@ -807,7 +470,9 @@ inline bool occludedBruteForce(const std::vector<Shape>& shapes, const Ray& ray)
         if (intersectShape(s, ray) < ray.tmax) return true;
     return false;
 }
-inline void buildAcceleration(Scene& scene) { scene.bvh = std::make_shared<const Bvh>(buildBvh(scene.shapes)); }
+template <bool anyHit>
+inline Hit traverseBvh(const Bvh& bvh, const Ray& ray);  // Appendix B
+inline void buildAcceleration(Scene& scene);              // Appendix B: scene.bvh over scene.shapes
 
 // Rays traced by this thread: the slides' "more costly", counted where paid (parallelRows sums them).
 struct RayCount {
@@ -858,6 +523,7 @@ struct BsdfSample {
     bool delta = false;
 };
 
+inline const Material& materialAt(const Scene& scene, const SurfacePoint& sp) { return scene.materials[scene.shapes[sp.shape].material]; }
 inline bool isSpecular(const Material& m) { return m.type == Material::Mirror || m.type == Material::Glass; }
 
 // Fresnel reflectance of a smooth dielectric; eta = eta_incident / eta_transmitted.
@@ -887,7 +553,7 @@ inline float adjointCorrection(const Scene& scene, const SurfacePoint& sp, Vec3 
 // and pdfReverse, the solid-angle densities of sampling wi from wo and wo from wi.
 inline Vec3 evalBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 wi, Transport mode, float& pdf, float& pdfReverse) {
     pdf = pdfReverse = 0;
-    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    const Material& m = materialAt(scene, sp);
     if (isSpecular(m) || dot(wo, sp.ng) * dot(wi, sp.ng) <= 0) return Vec3(0);  // no light leaks
     Vec3 n = facingShadingNormal(sp, wo);
     float cosI = dot(wi, n), cosO = dot(wo, n);
@@ -908,7 +574,7 @@ inline Vec3 evalBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Vec3 w
 
 // A mirror's or glass's probability of reflecting light arriving along wo (F, or 1 for a mirror).
 inline float specularReflectance(const Scene& scene, const SurfacePoint& sp, Vec3 wo) {
-    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    const Material& m = materialAt(scene, sp);
     if (m.type == Material::Mirror) return 1;
     bool entering = dot(wo, sp.ng) > 0;  // the front side (ng) is outside, ior 1
     return fresnelDielectric(dot(wo, facingShadingNormal(sp, wo)), entering ? 1 / m.ior : m.ior);
@@ -917,7 +583,7 @@ inline float specularReflectance(const Scene& scene, const SurfacePoint& sp, Vec
 // The delta lobe of a mirror or glass: reflection or (glass) refraction of wo. pdf is the lobe's
 // probability (F or 1-F), weight (f cos / delta) / pdf. Veach's perturbations keep a path's lobes.
 inline bool specularScatter(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Transport mode, bool refract, BsdfSample& bs) {
-    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    const Material& m = materialAt(scene, sp);
     Vec3 n = facingShadingNormal(sp, wo);
     bs.delta = true;
     float cosO = dot(wo, n);
@@ -945,7 +611,7 @@ inline bool specularScatter(const Scene& scene, const SurfacePoint& sp, Vec3 wo,
 }
 
 inline bool sampleBsdf(const Scene& scene, const SurfacePoint& sp, Vec3 wo, Transport mode, Rng& rng, BsdfSample& bs) {
-    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    const Material& m = materialAt(scene, sp);
     Vec3 n = facingShadingNormal(sp, wo);
     float u1 = rng.uniform(), u2 = rng.uniform();
     bs.delta = isSpecular(m);
@@ -1106,6 +772,13 @@ inline bool projectToFilm(const Camera& cam, Vec3 p, float& filmX, float& filmY)
     filmY = (1 - y) * 0.5f * cam.height;
     return filmX >= 0 && filmX < cam.width && filmY >= 0 && filmY < cam.height;
 }
+// The pixel where p appears, or -1. Rounding can put a point just inside the edge at filmX = width
+// after the int conversion's neighbour: clamp it to the last pixel.
+inline int pixelOf(const Camera& cam, Vec3 p) {
+    float fx, fy;
+    if (!projectToFilm(cam, p, fx, fy)) return -1;
+    return std::min(int(fy), cam.height - 1) * cam.width + std::min(int(fx), cam.width - 1);
+}
 
 // W_e of one pixel for the unit direction dir leaving the pinhole (0 behind it).
 inline float pixelImportance(const Camera& cam, Vec3 dir) {
@@ -1149,7 +822,7 @@ inline void setResolution(Camera& cam, int width, int height) {
 enum class Method { PT, NEE, LT, IR, BDPT, VCM, PSSMLT, MMLT, MLT };
 inline bool isMetropolis(Method m) { return m == Method::PSSMLT || m == Method::MMLT || m == Method::MLT; }  // section 8 (h)
 // How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
-// Albedo, q = the albedo at every vertex, in bdpt's MIS densities (its banner: why); Off, depth only.
+// Albedo, q = the albedo at every vertex, in bdpt's MIS densities (albedoContinuation); Off, depth only.
 enum class Roulette { Throughput, Albedo, Off };
 enum class Sampler { Sobol, Random };  // section 1: Owen-scrambled Sobol points, or PCG32 alone
 enum class Heuristic { Balance, Power, Max, Uniform };  // bdpt's MIS heuristics (its banner)
@@ -1186,15 +859,26 @@ struct RenderOptions : SampleOptions {
     int threads = 0;           // 0: all cores
 };
 
-// The numbers of sample `index` of a stream (a pixel, light path, VPL path; `salt` the kind, 0 the
-// camera's): PCG32, or Sobol points scrambled per stream and seed, in the stream's own order.
-inline Rng sampleRng(const SampleOptions& opt, uint64_t salt, uint64_t stream, uint64_t index) {
+// The kinds of random stream, each its own salt of the seed: numbers that meet in one path must come
+// from different streams (bdpt's camera and light subpaths; a pixel and ir's VPLs), or they are
+// correlated (shuffledIndex, section 1). Within a kind, `stream` numbers the pixel, path or chain.
+enum StreamKind : uint64_t {
+    kCameraStream = 0,                        // a pixel's camera path (every method)
+    kLightPathStream = 0x3c6ef372fe94f82bULL, // bdpt's and vcm's light subpath of a pixel
+    kVplStream = 0x5bd1e995ULL,               // ir's light paths that leave VPLs
+    kBootstrapStream = 0x2545f4914f6cdd1dULL, // Metropolis: the bootstrap's samples
+    kChainStream = 0x7a3f1c2b9e5d4081ULL,     // Metropolis: each chain's steps
+};
+
+// The numbers of sample `index` of a stream: PCG32, or Sobol points scrambled per stream and seed,
+// in the stream's own order (the camera's own order is the plain one: it is cached per thread).
+inline Rng sampleRng(const SampleOptions& opt, uint64_t salt, uint64_t stream, uint64_t index) {  // salt: a StreamKind
     Rng rng = makeRng(opt.seed ^ salt, stream, index);
     if (opt.sampler == Sampler::Random) return rng;
     rng.lowDiscrepancy = true;
     rng.scrambled = !opt.noScramble;
     rng.scrambleKey = mix64(mix64(opt.seed ^ salt) + stream);
-    if (salt == 0) cachedSobolPoint(uint32_t(index), rng.point);
+    if (salt == kCameraStream) cachedSobolPoint(uint32_t(index), rng.point);
     else sobolPoint(rng.scrambled ? shuffledIndex(uint32_t(index), uint32_t(rng.scrambleKey)) : uint32_t(index), rng.point);
     rng.scrambleCoordinates(0);
     return rng;
@@ -1234,34 +918,14 @@ struct PassData {
     const MetropolisPass* metropolis = nullptr;
 };
 
-// Runs body(row) for every row on `threads` threads, the caller among them, whose ray count gets theirs.
+// Runs body(row) for every row on `threads` threads, the caller among them (section 9).
 template <class Body>
-inline void parallelRows(int rows, int threads, const Body& body) {
-    std::atomic<int> nextRow{0};
-    std::atomic<bool> outOfMemory{false};
-    std::vector<RayCount> traced(std::max(1, threads));
-    auto worker = [&](int i) {
-        RayCount before = gRaysTraced;
-        try {
-            for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y);
-        } catch (const std::bad_alloc&) {  // thrown on, by the calling thread, once all have stopped
-            outOfMemory = true;
-            nextRow = rows;
-        }
-        traced[i] = {gRaysTraced.closest - before.closest, gRaysTraced.shadow - before.shadow};
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i);
-    worker(0);
-    for (std::thread& t : pool) t.join();
-    for (int i = 1; i < threads; ++i) gRaysTraced.closest += traced[i].closest, gRaysTraced.shadow += traced[i].shadow;
-    if (outOfMemory) throw std::bad_alloc();
-}
+inline void parallelRows(int rows, int threads, const Body& body);
 
 // Russian roulette ("Path tracing with Russian roulette"): continue with probability q and divide
 // the throughput by q, so E[beta 1(u<q)/q] = beta: the mean is unchanged, only paths that would
 // contribute little are cut. For pt and nee q follows the throughput relative to the path's start,
-// capped below 1 so that every path ends; lt, ir and bdpt use the albedo (bdpt's banner: why).
+// capped below 1 so that every path ends; lt, ir and bdpt use the albedo (albedoContinuation: why).
 inline bool russianRoulette(Vec3& beta, float startThroughput, int bounces, const SampleOptions& opt, Rng& rng) {
     if (bounces < opt.rrStart) return true;
     float q = std::min(0.95f, maxComponent(beta) / startThroughput);
@@ -1340,7 +1004,7 @@ inline Vec3 sampleNEE(const Scene& scene, const SampleOptions& opt, const PassDa
             }
         }
         if (bounces >= opt.maxDepth) break;
-        const Material& m = scene.materials[scene.shapes[sp.shape].material];
+        const Material& m = materialAt(scene, sp);
         if (!isSpecular(m)) L += beta * estimateDirect(scene, sp, wo, rng, opt.mis);
         BsdfSample bs;
         if (!sampleBsdf(scene, sp, wo, Transport::Radiance, rng, bs)) break;
@@ -1367,8 +1031,8 @@ struct CameraConnection {
 inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& x) {
     CameraConnection c;
     const Camera& cam = scene.camera;
-    float fx, fy;
-    if (!projectToFilm(cam, x.p, fx, fy)) return c;
+    const int pixel = pixelOf(cam, x.p);
+    if (pixel < 0) return c;
     Vec3 d = cam.eye - x.p;
     float dist2 = dot(d, d);
     c.toCamera = d / std::sqrt(dist2);
@@ -1377,8 +1041,7 @@ inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& 
     c.importance = pixelImportance(cam, -c.toCamera) * cosCamera / (dist2 * lightPathsPerPass);
     SurfacePoint eye;  // no surface: ng = 0
     eye.p = cam.eye;
-    if (occluded(scene, shadowRay(x, eye))) return c;
-    c.pixel = std::min(int(fy), cam.height - 1) * cam.width + std::min(int(fx), cam.width - 1);
+    if (!occluded(scene, shadowRay(x, eye))) c.pixel = pixel;
     return c;
 }
 
@@ -1401,10 +1064,15 @@ struct PathVertex {
     int light = -1;         // the light y_0 was sampled on
 };
 
-// Roulette::Albedo's continuation probability: the material's largest albedo (SmallVCM's). It
-// depends on the vertex alone, so both walks through it have it, and MIS counts it both ways.
+// Roulette::Albedo's continuation probability: the material's largest albedo (SmallVCM's).
+// Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues from
+// a surface vertex with q = its albedo (this function), so both densities sampled there carry
+// q, and the strategy whose subpath survived more roulette gets less weight. q depends on the
+// vertex alone, so both walks through it have it, and MIS counts it both ways. A throughput-relative
+// q (pt's) cannot be counted so: the other subpath's q depends on its unknown throughput.
+// Appendix A compares the three rules: albedo roulette costs least per sample and is the most efficient.
 inline float albedoContinuation(const Scene& scene, const SurfacePoint& sp) {
-    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    const Material& m = materialAt(scene, sp);
     return m.type == Material::Glass ? 1.0f : std::min(1.0f, maxComponent(m.albedo));
 }
 
@@ -1438,11 +1106,20 @@ inline Vec3 evalVertex(const Scene& scene, const PathVertex& v, Vec3 w, Transpor
 inline double toArea(double pdfOmega, const PathVertex& next, Vec3 w, float dist2) { return pdfOmega * cosAt(next, w) / dist2; }
 
 // The density, up to the delta itself, with which a specular vertex sends its subpath along the
-// unit direction w: eta_w^2 |w . ns|, eta_w the index on w's side. Mirrors and Snell's law keep
-// the etendue eta^2 |cos| d omega, so the delta cancels between strategies; this factor does not
-// (bdpt's banner says why it matters).
+// unit direction w: eta_w^2 |w . ns|, eta_w the index on w's side.
+// A strategy that would connect at a delta vertex (mirror, glass) or hit a point light has density
+// 0 and is skipped (counting it gave single huge fireflies in Mitsuba #132, pbrt-v4 #326, SmallVCM
+// #5). Every other strategy crosses a specular vertex x_j inside one subpath: the delta cancels
+// between strategies; the geometry around it must be kept. The delta is one in the measure
+// eta^2 |cos| d omega, which mirrors and Snell's law keep (etendue) whichever way x_j is crossed;
+// left in pdfFwd and pdfRev are eta^2 |cos| at x_j (here) and the |cos|/d^2 of the
+// conversion to area at the next vertex. Kept, they cancel along a chain a S..S b, all but its ends':
+//     p(a ... b) / p(b ... a) = [p_omega(a) / (eta_a^2 |cos_a|)] / [p_omega(b) / (eta_b^2 |cos_b|)].
+// pbrt stores the density after a delta event as 1 (--delta-density-one), dropping that |cos|/d^2:
+// for a caustic millimetres below a glass ball it is huge, and pbrt's convention hands the caustic
+// to the noisy s = 0 instead of light tracing (notes, page 10M).
 inline float specularDensity(const Scene& scene, const SurfacePoint& sp, Vec3 w) {
-    const Material& m = scene.materials[scene.shapes[sp.shape].material];
+    const Material& m = materialAt(scene, sp);
     float eta = m.type == Material::Glass && dot(w, sp.ng) < 0 ? m.ior : 1;  // the back side is inside
     return sqr(eta) * absDot(w, sp.ns);
 }
@@ -1548,7 +1225,7 @@ inline void lightSubpath(const Scene& scene, const SampleOptions& opt, Rng& rng,
 
 // Mirrors and glass cannot be connected to: the direction is fixed by the other vertex.
 inline bool connectable(const Scene& scene, const PathVertex& v) {
-    return v.type != PathVertex::Surface || !isSpecular(scene.materials[scene.shapes[v.sp.shape].material]);
+    return v.type != PathVertex::Surface || !isSpecular(materialAt(scene, v.sp));
 }
 
 // A light-side vertex seen through the pinhole (the t = 1 connection); pixel -1 if it is not seen.
@@ -1619,7 +1296,7 @@ inline std::vector<Vpl> traceVpls(const Scene& scene, const SampleOptions& opt, 
     std::vector<Vpl> vpls;
     std::vector<PathVertex> path;
     for (int i = 0; i < opt.vplPaths; ++i) {
-        Rng rng = sampleRng(opt, 0x5bd1e995ULL, uint64_t(i), uint64_t(pass));
+        Rng rng = sampleRng(opt, kVplStream, uint64_t(i), uint64_t(pass));
         lightSubpath(scene, opt, rng, path);
         for (size_t k = 0; k < path.size(); ++k) {
             if (!connectable(scene, path[k])) continue;
@@ -1691,23 +1368,7 @@ inline Vec3 sampleIR(const Scene& scene, const SampleOptions& opt, const PassDat
 // One walk serves all four heuristics and vcm's merges (section 8: one more term per vertex); its
 // O(k) per connection is a few percent of a sample, most of whose time is shading and sampling
 // (Appendix A; SmallVCM's cached recursion is page 10's exercise).
-// A strategy that would connect at a delta vertex (mirror, glass) or hit a point light has density
-// 0 and is skipped (counting it gave single huge fireflies in Mitsuba #132, pbrt-v4 #326, SmallVCM
-// #5). Every other strategy crosses a specular vertex x_j inside one subpath: the delta cancels
-// between strategies; the geometry around it must be kept. The delta is one in the measure
-// eta^2 |cos| d omega, which mirrors and Snell's law keep (etendue) whichever way x_j is crossed;
-// left in pdfFwd and pdfRev are eta^2 |cos| at x_j (specularDensity) and the |cos|/d^2 of the
-// conversion to area at the next vertex. Kept, they cancel along a chain a S..S b, all but its ends':
-//     p(a ... b) / p(b ... a) = [p_omega(a) / (eta_a^2 |cos_a|)] / [p_omega(b) / (eta_b^2 |cos_b|)].
-// pbrt stores the density after a delta event as 1 (--delta-density-one), dropping that |cos|/d^2:
-// for a caustic millimetres below a glass ball it is huge, and pbrt's convention hands the caustic
-// to the noisy s = 0 instead of light tracing (notes, page 10M). The walk is in double: near
-// corners, with sharp lobes, one density can be 1e-31 and another 1e+8.
-// Russian roulette is part of the densities (Veach 1997, 10.3; SmallVCM): a subpath continues from
-// a surface vertex with q = its albedo (albedoContinuation), so both densities sampled there carry
-// q, and the strategy whose subpath survived more roulette gets less weight. A throughput-relative
-// q (pt's) cannot be counted so: the other subpath's q depends on its unknown throughput. Appendix
-// A compares the three rules: albedo roulette costs least per sample and is the most efficient.
+// The walk is in double: near corners, with sharp lobes, one density can be 1e-31 and another 1e+8.
 // A subpath, or the first vertices of one: bdpt's own vectors, and vcm's light subpaths, which
 // lie one after another in arrays shared by the whole pass.
 struct Subpath {
@@ -1836,7 +1497,7 @@ inline Vec3 connectStrategy(const Scene& scene, Subpath light, int s, Subpath ca
 
 // The light subpath of a pixel and pass, a stream of its own: vcm makes the same ones as bdpt.
 inline Rng lightPathRng(const SampleOptions& opt, int pixel, int pass) {
-    return sampleRng(opt, 0x3c6ef372fe94f82bULL, uint64_t(pixel), uint64_t(pass));
+    return sampleRng(opt, kLightPathStream, uint64_t(pixel), uint64_t(pass));
 }
 
 // Every connection (s,t) of a camera and a light subpath, MIS-weighted; each recorded up to strategyMaxLength.
@@ -1996,7 +1657,7 @@ inline float defaultMergeRadius(const Scene& scene) {
         if (!hit.found()) break;
         distance += hit.t;
         SurfacePoint sp = surfaceAt(scene, ray, hit);
-        if (!isSpecular(scene.materials[scene.shapes[sp.shape].material])) break;
+        if (!isSpecular(materialAt(scene, sp))) break;
         ray = spawnRay(sp, ray.d);
     }
     return (distance > 0 ? distance : 1) * 2 * cam.tanHalfFov / cam.height;
@@ -2352,6 +2013,7 @@ struct MutatedPath {
     Vec3 colour;   // f's colour, of luminance 1
     double f = 0;  // luminance of f(x)
     int pixel = -1;
+    int mutation = 0;  // the mutation that proposed it (kBidirectional ...): Veach's table counts them
     int k() const { return int(x.size()) - 1; }  // segments
 };
 
@@ -2432,12 +2094,6 @@ inline bool extendSubpath(const Scene& scene, const SampleOptions& walk, std::ve
     return path.size() == before + size_t(n);
 }
 
-inline int pixelOf(const Camera& cam, Vec3 p) {
-    float fx, fy;
-    if (!projectToFilm(cam, p, fx, fy)) return -1;
-    return std::min(int(fy), cam.height - 1) * cam.width + std::min(int(fx), cam.width - 1);
-}
-
 // The path strategy (s,t) makes of light[0..s-1] and camera[0..t-1], with f, its pixel and its
 // vertices' densities from both sides (misWalk's); false if it carries nothing or leaves the image.
 inline bool joinPath(const Scene& scene, Subpath light, int s, Subpath camera, int t, MutatedPath& y) {
@@ -2467,7 +2123,7 @@ inline bool joinPath(const Scene& scene, Subpath light, int s, Subpath camera, i
     if (y.x[0].deltaPosition) y.pE[0] = 0;
     y.pL[k] = 0;  // the pinhole
     for (int i = 1; i < k; ++i) {
-        const Material& m = scene.materials[scene.shapes[y.x[i].sp.shape].material];
+        const Material& m = materialAt(scene, y.x[i].sp);
         if (m.type != Material::Glass) continue;
         float F = specularReflectance(scene, y.x[i].sp, normalize(y.x[i + 1].sp.p - y.x[i].sp.p));
         bool refracted = dot(y.x[i + 1].sp.p - y.x[i].sp.p, y.x[i].sp.ng) * dot(y.x[i - 1].sp.p - y.x[i].sp.p, y.x[i].sp.ng) < 0;
@@ -2754,6 +2410,7 @@ inline double causticPerturbation(const Scene& scene, const MutatedPath& x, Rng&
 
 // The mutations that apply to x (the bidirectional one always), each chosen with probability 1/count.
 enum MutationBits { kBidirectional = 1, kLens = 2, kCaustic = 4, kMultiChain = 8 };
+inline int mutationIndex(int bit) { return bit == kLens ? 1 : bit == kCaustic ? 2 : bit == kMultiChain ? 3 : 0; }  // a row of Veach's table
 inline int applicableMutations(const Scene& scene, const MutatedPath& x, int enabled) {
     return (enabled & kBidirectional) | (enabled & kLens && lensVertex(scene, x) >= 0 ? kLens : 0) |
            (enabled & kCaustic && causticVertex(scene, x) >= 0 ? kCaustic : 0) |
@@ -2762,17 +2419,17 @@ inline int applicableMutations(const Scene& scene, const MutatedPath& x, int ena
 inline int bitCount(int bits) { return (bits & 1) + (bits >> 1 & 1) + (bits >> 2 & 1) + (bits >> 3 & 1); }
 
 // One proposal from x and its acceptance a(y|x), the choice of the mutation counted both ways.
-inline double mutate(const Scene& scene, const SampleOptions& walk, LengthRange r, const MutatedPath& x, Rng& rng, MutatedPath& y, int* which = nullptr) {
+inline double mutate(const Scene& scene, const SampleOptions& walk, LengthRange r, const MutatedPath& x, Rng& rng, MutatedPath& y) {
     const int applicable = applicableMutations(scene, x, walk.mutations), count = bitCount(applicable);
     if (count == 0) return 0;  // (tests run the perturbations alone)
     int pick = std::min(int(rng.uniform() * count), count - 1), bit = 1;
     for (;; bit <<= 1)
         if (applicable & bit && pick-- == 0) break;
-    if (which) *which = bit;
     double ratio = bit == kBidirectional ? bidirectionalMutation(scene, walk, r, x, rng, y)
                    : bit == kLens        ? lensPerturbation(scene, x, rng, y)
                    : bit == kCaustic     ? causticPerturbation(scene, x, rng, y)
                                          : multiChainPerturbation(scene, x, rng, y);
+    y.mutation = bit;
     if (!(ratio > 0) || !std::isfinite(ratio)) return 0;
     return std::min(1.0, ratio * count / bitCount(applicableMutations(scene, y, walk.mutations)));
 }
@@ -2827,9 +2484,9 @@ inline int chainCount(const SampleOptions& opt) { return opt.chains > 0 ? opt.ch
 
 // Independent numbers, whatever --sampler: mmlt deals them to the lengths by index (every L-th Sobol point is uneven).
 inline Rng bootstrapRng(const SampleOptions& opt, int sample, int stream) {
-    return makeRng(opt.seed ^ 0x2545f4914f6cdd1dULL, uint64_t(sample), uint64_t(stream));
+    return makeRng(opt.seed ^ kBootstrapStream, uint64_t(sample), uint64_t(stream));
 }
-inline Rng chainRng(const SampleOptions& opt, size_t chain) { return makeRng(opt.seed ^ 0x7a3f1c2b9e5d4081ULL, uint64_t(chain), 0); }
+inline Rng chainRng(const SampleOptions& opt, size_t chain) { return makeRng(opt.seed ^ kChainStream, uint64_t(chain), 0); }
 
 // f of the bootstrap's n samples, f(i) each, on the pass's threads.
 template <class F>
@@ -3061,11 +2718,11 @@ inline void tracePathPass(const Scene& scene, const SampleOptions& opt, int pass
     const SampleOptions walk = chainOptions(opt);
     const LengthRange lengths{shortestChainPath(opt), opt.maxDepth + 1};
     mutateChains(mp.paths, mp, N, pass, threads, [&](PathChain& chain, const auto& splat) {
-        int which = 0;
-        double a = mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal, &which);
+        chain.proposal.mutation = 0;
+        double a = mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal);
+        const int m = mutationIndex(chain.proposal.mutation);
         long long before = chain.accepted;
         splatAndAccept(chain, a, splat);
-        int m = which == kBidirectional ? 0 : which == kLens ? 1 : which == kCaustic ? 2 : 3;
         ++chain.proposedBy[m];
         chain.acceptedBy[m] += chain.accepted - before;
     });
@@ -3106,6 +2763,30 @@ inline double imageMean(const Image& img) {
     return s / (3.0 * std::max<size_t>(1, img.pixels.size()));
 }
 
+// parallelRows: the rows shared out by an atomic counter; each worker's rays added to the caller's count.
+template <class Body>
+inline void parallelRows(int rows, int threads, const Body& body) {
+    std::atomic<int> nextRow{0};
+    std::atomic<bool> outOfMemory{false};
+    std::vector<RayCount> traced(std::max(1, threads));
+    auto worker = [&](int i) {
+        RayCount before = gRaysTraced;
+        try {
+            for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y);
+        } catch (const std::bad_alloc&) {  // thrown on, by the calling thread, once all have stopped
+            outOfMemory = true;
+            nextRow = rows;
+        }
+        traced[i] = {gRaysTraced.closest - before.closest, gRaysTraced.shadow - before.shadow};
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i);
+    worker(0);
+    for (std::thread& t : pool) t.join();
+    for (int i = 1; i < threads; ++i) gRaysTraced.closest += traced[i].closest, gRaysTraced.shadow += traced[i].shadow;
+    if (outOfMemory) throw std::bad_alloc();
+}
+
 // What the methods prepare per pass and keep (vcm's buffers, the chains); after a render, their last pass's.
 struct PassStorage {
     std::vector<Vpl> vpls;
@@ -3119,7 +2800,6 @@ struct RenderResult {
     int passes = 0;
     long long nonFinite = 0;        // NaN/inf samples and splats dropped
     double seconds = 0;
-    std::vector<double> passMeans;  // each pass's image mean: independent samples of the mean
     double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: the energy gathered, before and after
     double clampRemoved() const { return energyUnclamped > 0 ? 1 - energyClamped / energyUnclamped : 0; }
     std::vector<Image> strategyImages;  // --strategies: [2 strategyImage(...) + weighted]
@@ -3198,7 +2878,7 @@ struct Film {
             for (int c = 0; c < 3; ++c) strategySum[image][3 * size_t(pixel) + c] += value[c];
     }
     // A pass: the pixels' samples in `pass`, the splats added in row order. Returns the pass's mean.
-    double addPass(std::vector<Vec3>& pass, const std::vector<RowOutput>& rows, RenderResult& result) {
+    void addPass(std::vector<Vec3>& pass, const std::vector<RowOutput>& rows, RenderResult& result) {
         for (const RowOutput& row : rows) {
             result.nonFinite += row.nonFinite;
             result.energyUnclamped += row.energyUnclamped;
@@ -3213,15 +2893,11 @@ struct Film {
                 addStrategy(2 * image + 1, s.pixel, s.value * s.weight);
             }
         }
-        double passSum = 0;
-        for (size_t i = 0; i < pass.size(); ++i) {
+        for (size_t i = 0; i < pass.size(); ++i)
             for (int c = 0; c < 3; ++c) {
                 sum[3 * i + c] += pass[i][c];
                 sumSq[3 * i + c] += double(pass[i][c]) * pass[i][c];
             }
-            passSum += double(pass[i].x) + pass[i].y + pass[i].z;
-        }
-        return passSum / (3.0 * pass.size());
     }
     // The image (mean over n passes), its variance, and the strategy images.
     void finish(int n, RenderResult& result) const {
@@ -3273,7 +2949,7 @@ struct Rendering {
             row.nonFinite = 0;
             row.energyUnclamped = row.energyClamped = 0;
             for (int x = 0; x < W; ++x) {
-                Rng rng = sampleRng(opt, 0, uint64_t(y) * W + x, uint64_t(p));
+                Rng rng = sampleRng(opt, kCameraStream, uint64_t(y) * W + x, uint64_t(p));
                 Vec3 v = sample(scene, opt, data, x, y, rng, row);
                 if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
                 pass[size_t(y) * W + x] = v;
@@ -3282,7 +2958,7 @@ struct Rendering {
         });
         result.rays.closest += gRaysTraced.closest - before.closest;
         result.rays.shadow += gRaysTraced.shadow - before.shadow;
-        result.passMeans.push_back(film.addPass(pass, rows, result));
+        film.addPass(pass, rows, result);
         result.passes = p + 1;
     }
     RenderResult finish() {
@@ -3760,7 +3436,20 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      "Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)\n"
      "and, beside it, a PFM with the linear values. For example:\n"
      "  ./bdpt scenes/cornell.scene --method bdpt --spp 64 --out build/cornell.png\n\nMethod", nullptr},
-    {"--method", "M", {}, "", "pt, nee, lt, ir, bdpt (default), vcm, mlt, pssmlt or mmlt (sections 7 and 8)",
+    {"--method", "M", {}, "", "pt   (a) eye tracing: emission counted only when a path hits a light\n"
+     "nee  (b) path tracing with next-event estimation\n"
+     "lt   (c) light tracing: light paths splatted onto the film\n"
+     "ir   (d) instant radiosity: camera paths gather virtual point lights\n"
+     "bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)\n"
+     "vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)\n"
+     "mlt  (see later) Metropolis light transport (Veach's): Markov chains of\n"
+     "     paths, mutated by replacing a few vertices (bidirectional mutation) or\n"
+     "     by moving them a little (lens, caustic, multi-chain perturbations);\n"
+     "     --spp N means N mutations per pixel on average\n"
+     "pssmlt (see later) primary-sample-space MLT (Kelemen's): chains that mutate\n"
+     "     the random numbers of bdpt's whole sample\n"
+     "mmlt (see later) multiplexed MLT (pbrt's): pssmlt whose state also picks one\n"
+     "     path length and one strategy (s,t), weighted by bdpt's MIS",
      [](CL& cl, A& a) { cl.opt.method = a.choice<Method>("method", kMethodNames); }},
     {"--mis", "", {Method::NEE}, "--method nee", "nee: weight light and BSDF sampling with the power heuristic",
      [](CL& cl, A&) { cl.opt.mis = true; }},
@@ -3768,52 +3457,78 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      [](CL& cl, A& a) { cl.opt.vplPaths = int(a.integer(1, 1e6)); }},
     {"--clamp", "C", {Method::IR}, "--method ir", "ir: bound the geometry term G by C (panel (e)); prints the energy removed",
      [](CL& cl, A& a) { cl.opt.clamp = float(a.number(1e-30, 1e30)); }},
-    {"--heuristic", "H", kBdptFamily, kBdptFamilyName, "bdpt's MIS weights: balance (default), power, max or uniform",
+    {"--heuristic", "H", kBdptFamily, kBdptFamilyName, "bdpt, vcm, and the Metropolis methods' bdpt samples: MIS weights balance\n"
+     "(default), power, max (the slides' maximum heuristic) or uniform (1 /\nnumber of strategies able to make the path)",
      [](CL& cl, A& a) { cl.opt.heuristic = a.choice<Heuristic>("heuristic", kHeuristicNames); }},
-    {"--radius", "R", {Method::VCM}, "--method vcm", "vcm: merging radius r_0 of the first pass; 0: no merging, as bdpt",
+    {"--radius", "R", {Method::VCM}, "--method vcm", "vcm: merging radius r_0 of the first pass (default: one pixel's footprint\n"
+     "where the central camera ray meets the scene); 0: no merging, as bdpt.\n"
+     "vcm keeps a pass's light subpaths, about 140 bytes per light vertex (the\n"
+     "vertex, and a grid record if mergeable), 1 to 6 light vertices per pixel on\n"
+     "the scenes: the summary line reports both",
      [](CL& cl, A& a) { cl.opt.mergeRadius = float(a.number(0, 1e30)); }},
-    {"--alpha", "A", {Method::VCM}, "--method vcm", "vcm: radius schedule r(n) = r_0 n^((A-1)/2), 0 < A <= 1 (default 0.75)",
+    {"--alpha", "A", {Method::VCM}, "--method vcm", "vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1\n(default 0.75)",
      [](CL& cl, A& a) { cl.opt.alpha = float(a.number(1e-3, 1)); }},
-    {"--strategies", "DIR", {Method::BDPT, Method::VCM}, "--method bdpt and vcm", "bdpt, vcm: also write one image per strategy (s,t) into DIR",
+    {"--strategies", "DIR", {Method::BDPT, Method::VCM}, "--method bdpt and vcm", "bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length\n"
+     "(vcm: and one of all merges per path length), unweighted and MIS-weighted,\n"
+     "and two pyramid montages, into DIR (each pyramid row brightened by the\n"
+     "stops printed in its tiles' labels)",
      [](CL& cl, A& a) { cl.strategiesDir = a.value(); }},
     {"--strategy-length", "K", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)",
      "longest path (segments) with per-strategy images (default 5)", [](CL& cl, A& a) { cl.strategyLength = int(a.integer(1, 12)); }},
     {"--large-step", "P", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: probability of a large step, every number drawn afresh (0.3)",
      [](CL& cl, A& a) { cl.opt.largeStep = float(a.number(0, 1)); }},
-    {"--sigma", "S", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: a small step's deviation per number (default 0.01)",
+    {"--sigma", "S", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: a small step moves each number by a normal of deviation S,\nwrapped into [0,1) (default 0.01)",
      [](CL& cl, A& a) { cl.opt.sigma = float(a.number(1e-6, 10)); }},
-    {"--bootstrap", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: samples that estimate b and choose the chains' starts",
+    {"--bootstrap", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: independent samples that estimate the image's\n"
+     "normalisation b and choose the chains' starts in proportion to their\n"
+     "brightness (default 100000 for pssmlt, 200000 for mlt, 1000000 for mmlt,\nwhich spreads them over the path lengths)",
      [](CL& cl, A& a) { cl.opt.bootstrap = int(a.integer(1, 1e8)); }},
     {"--chains", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: Markov chains, each its own random stream (default 1024 for mlt, 256 otherwise)",
      [](CL& cl, A& a) { cl.opt.chains = int(a.integer(1, 1e6)); }},
-    {"--mutations", "LIST", {Method::MLT}, "--method mlt", "mlt: Veach's mutations among bidir, lens, caustic, multichain (default all four)",
+    {"--mutations", "LIST", {Method::MLT}, "--method mlt", "mlt: Veach's mutations to use, among bidir, lens, caustic and multichain,\n"
+     "comma-separated; bidir is always among them (default: all four)",
      [](CL& cl, A& a) { cl.opt.mutations = a.mutationList(); }},
-    {"--chain-short-paths", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: the chains render paths of one and two segments too",
+    {"--chain-short-paths", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: the chains render paths of one and two segments too\n"
+     "(by default a bdpt sample per pixel renders them, and the chains the rest)",
      [](CL& cl, A&) { cl.opt.chainShortPaths = true; }},
     {"--maxdepth", "D", {}, "", "at most D bounces (scattering vertices) per path (default 32)",
      [](CL& cl, A& a) { cl.opt.maxDepth = int(a.integer(0, 10000)); }},
-    {"--roulette", "R", kLightPathMethods, kLightPathName, "how light-path methods end subpaths: throughput, albedo (default) or off",
+    {"--roulette", "R", kLightPathMethods, kLightPathName, "lt, ir, bdpt, vcm and the Metropolis methods' bdpt samples (mlt's and\n"
+     "mmlt's own walks have chosen lengths): how subpaths end: throughput (q from\n"
+     "the throughput after --rr-start bounces, as pt and nee), albedo (q = the\n"
+     "material's albedo at every vertex, counted in bdpt's MIS densities) or off\n"
+     "(only --maxdepth); default albedo",
      [](CL& cl, A& a) { cl.opt.roulette = a.choice<Roulette>("roulette", kRouletteNames); }},
-    {"--rr-start", "N", {}, "", "pt, nee (and --roulette throughput): Russian roulette from bounce N on (default 3)",
+    {"--rr-start", "N", {}, "", "pt, nee (and --roulette throughput): Russian roulette from bounce N on\n"
+     "(default 3); N > --maxdepth turns it off (lecture notes, page 9)",
      [](CL& cl, A& a) { cl.opt.rrStart = int(a.integer(0, 10001)); }},
     {nullptr, "", {}, "", "Deliberate mistakes (slides: \"Non-symmetric scattering\")", nullptr},
-    {"--symmetric-refraction", "", {}, "", "swap the eta^2 rules of eye and light paths",
+    {"--symmetric-refraction", "", {}, "", "swap the two refraction rules: eye paths scale refracted radiance\n"
+     "like power (no eta^2), light paths scale power like radiance (eta^2)",
      [](CL& cl, A&) { cl.conventions.symmetricRefraction = true; }},
     {"--no-adjoint-correction", "", kLightPathMethods, kLightPathName, "light paths use the shading-normal BSDF unchanged (not its adjoint)",
      [](CL& cl, A&) { cl.conventions.noAdjointCorrection = true; }},
-    {"--fixed-ray-offset", "", {}, "", "push new rays off surfaces by 5e-5 (1 + max|p|), not by the error bound",
+    {"--fixed-ray-offset", "", {}, "", "push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)\n"
+     "instead of the hit point's error bound (see tests/thin-gap.scene)",
      [](CL& cl, A&) { cl.conventions.fixedRayOffset = true; }},
-    {"--delta-density-one", "", kBdptFamily, kBdptFamilyName, "store the MIS densities after a mirror or glass as 1 (pbrt's)",
+    {"--delta-density-one", "", kBdptFamily, kBdptFamilyName, "bdpt, vcm, Metropolis: after a mirror or glass, store the MIS densities\n"
+     "as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy\ns = 0",
      [](CL& cl, A&) { cl.conventions.deltaDensityOne = true; }},
-    {"--fixed-start", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: every chain from one fixed state (start-up bias)",
+    {"--fixed-start", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: every chain starts from one fixed state (the first bootstrap\n"
+     "sample that carries light) instead of one chosen in proportion to its\n"
+     "brightness: start-up bias, visible at short runs",
      [](CL& cl, A&) { cl.opt.fixedStart = true; }},
-    {"--no-scramble", "", {}, "", "--sampler sobol without its scrambles: one point set for every pixel",
+    {"--no-scramble", "", {}, "", "--sampler sobol without its random scrambles: every pixel draws the same\n"
+     "point in each pass, so neighbouring pixels' film positions, bounces and\n"
+     "lamp points move together (a biased, patterned image)",
      [](CL& cl, A&) { cl.opt.noScramble = true; }},
     {nullptr, "", {}, "", "Sampling", nullptr},
     {"--spp", "N", {}, "", "N passes of one sample per pixel (default 16)", [](CL& cl, A& a) { cl.opt.spp = int(a.integer(1, 1e8)); }},
     {"--time", "SECONDS", {}, "", "render passes until SECONDS have passed (replaces --spp)",
      [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7); }},
-    {"--sampler", "S", {}, "", "sobol (default: Owen-scrambled Sobol points) or random (PCG32)",
+    {"--sampler", "S", {}, "", "where each pixel sample's numbers come from: sobol (default), the points\n"
+     "of an Owen-scrambled Sobol sequence in its first 32 dimensions (PCG32\n"
+     "past them), or random (independent PCG32 numbers throughout)",
      [](CL& cl, A& a) { cl.opt.sampler = a.choice<Sampler>("sampler", kSamplerNames); }},
     {"--seed", "S", {}, "", "seed of every pixel's random stream and scrambles (default 1)", [](CL& cl, A& a) { cl.opt.seed = uint64_t(a.integer(0, 9e15)); }},
     {"--threads", "N", {}, "", "worker threads (default: all cores); the image does not depend on N",
@@ -3917,6 +3632,41 @@ inline std::string summaryLine(const CommandLine& cl, const RenderResult& r, con
     return line.str();
 }
 
+// What a method's last pass leaves to say: the chains' b and acceptance (Veach's per mutation for
+// mlt), and the share of the energy ir's clamp removed (its bias, panel (e)).
+inline std::string methodSummary(const SampleOptions& opt, const RenderResult& r) {
+    const MetropolisPass& mp = r.method.metropolis;
+    long long accepted = 0, proposed = 0, acceptedBy[4] = {0, 0, 0, 0}, proposedBy[4] = {0, 0, 0, 0};
+    for (const PrimarySampleChain& c : mp.chains) accepted += c.accepted, proposed += c.proposed;
+    for (const PathChain& c : mp.paths) {
+        accepted += c.accepted, proposed += c.proposed;
+        for (int m = 0; m < 4; ++m) acceptedBy[m] += c.acceptedBy[m], proposedBy[m] += c.proposedBy[m];
+    }
+    char text[256];
+    std::string s;
+    if (isMetropolis(opt.method)) {
+        std::snprintf(text, sizeof text, "%s: b = %.6g +- %.2g (bootstrap of %d samples); %d chains accepted %.1f%% of %lld mutations\n",
+                      methodName(opt.method), mp.b, mp.bStandardError, bootstrapSamples(opt), chainCount(opt),
+                      100.0 * double(accepted) / double(std::max(1LL, proposed)), proposed);
+        s += text;
+    }
+    if (opt.method == Method::MLT) {
+        s += "mlt: accepted";
+        const char* names[4] = {"bidirectional", "lens", "caustic", "multi-chain"};
+        for (int m = 0; m < 4; ++m) {
+            std::snprintf(text, sizeof text, "%s %s %.1f%% of %lld", m ? "," : "", names[m],
+                          100.0 * double(acceptedBy[m]) / double(std::max(1LL, proposedBy[m])), proposedBy[m]);
+            s += text;
+        }
+        s += " (a proposal that could not be made counts as refused)\n";
+    }
+    if (opt.method == Method::IR && opt.clamp > 0) {
+        std::snprintf(text, sizeof text, "clamp %g removed %g%% of the energy gathered from VPLs\n", opt.clamp, 100 * r.clampRemoved());
+        s += text;
+    }
+    return s;
+}
+
 // The scene as the command line asks for it: its resolution, its mistakes, its PNG's exposure.
 inline void applyToScene(CommandLine& cl, Scene& scene) {
     if (cl.width > 0) setResolution(scene.camera, cl.width, cl.height);
@@ -3947,10 +3697,371 @@ inline int runLecture(const std::vector<std::string>& args, std::ostream& out, s
         err << "bdpt: cannot write " << cl.out << ", " << pfm << " or the strategy images\n";
         return 1;
     }
-    if (!cl.quiet) out << summaryLine(cl, r, pfm);
+    if (!cl.quiet) out << summaryLine(cl, r, pfm) << methodSummary(cl.opt, r);
     return 0;
 }
 
 #ifndef BDPT_NO_MAIN
 int main(int argc, char** argv) { return runLecture(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr); }
 #endif
+
+// == Appendix B. The BVH ====================================================================
+// Not a slide's topic but the notes' appendix B: section 3's intersect() and occluded() call it. A
+// bounding volume hierarchy finds the closest of N shapes in about log N box tests instead of N.
+// Build: binned SAH. Split a set of shapes where the surface area heuristic
+//   cost = A(left)/A * N(left) + A(right)/A * N(right)
+// is smallest, over 16 bins of centroids per axis; split the child with the largest area again
+// until a node has W children (W = 4 with SSE, 8 with AVX). A leaf is one shape, in leaf order:
+// the W-wide box test screens W shapes at once, and a shape's exact test reads only what its kind
+// needs; incoherent rays wait on memory, not arithmetic (appendix B; `make bench` races Embree).
+// Traverse: each node keeps its W child boxes as structure-of-arrays, so one SIMD slab test checks
+// all children; closest hit visits them front to back and skips boxes beyond the hit so far; any
+// hit (shadow rays) stops at the first. A zero direction component gives an infinite inverse, and
+// 0*inf = NaN where the origin lies on a slab's plane: the operand order of min/max below ignores
+// it (SSE returns the second operand on NaN). Box exits are widened by 1+2gamma_3 so that
+// rounding never loses a hit at a box edge (pbrt).
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+struct Aabb {
+    Vec3 lo{kInf}, hi{-kInf};
+    void grow(Vec3 p) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    void grow(const Aabb& b) {
+        if (b.lo.x <= b.hi.x) grow(b.lo), grow(b.hi);  // an empty box (an empty SAH bin) adds nothing
+    }
+    float halfArea() const {
+        Vec3 d = hi - lo;
+        return lo.x > hi.x ? 0 : d.x * d.y + d.y * d.z + d.z * d.x;
+    }
+};
+
+inline Aabb shapeBounds(const Shape& s) {
+    Aabb b;
+    if (s.type == Shape::Sphere) {
+        b.grow(s.p - Vec3(s.radius));
+        b.grow(s.p + Vec3(s.radius));
+    } else {
+        for (Vec3 c : {s.p, s.p + s.u, s.p + s.v, s.p + s.u + s.v}) b.grow(c);
+    }
+    return b;
+}
+
+// What the leaves hold, in leaf order: just enough to intersect (a sphere 16 bytes, a quad 48).
+struct SpherePrimitive { Vec3 centre; float radius; };
+struct QuadPrimitive { Vec3 q, u, v, w; };  // corner, edges, w = n/(n.n)
+
+// Node width: 8 children with AVX (make NATIVE=1), else 4 (SSE); SIMD(op) names that width's intrinsic.
+#if defined(__AVX__)
+constexpr int kWidth = 8;
+using Lanes = __m256;
+#define SIMD(op) _mm256_##op
+inline Lanes lessEqual(Lanes a, Lanes b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
+#elif defined(__SSE2__)
+constexpr int kWidth = 4;
+using Lanes = __m128;
+#define SIMD(op) _mm_##op
+inline Lanes lessEqual(Lanes a, Lanes b) { return _mm_cmple_ps(a, b); }
+#else
+constexpr int kWidth = 4;
+#endif
+
+struct alignas(64) BvhNode {
+    float box[6][kWidth];   // [min x, max x, min y, max y, min z, max z][child]; empty child: min > max
+    int32_t child[kWidth];  // >= 0 inner node index; < 0 a leaf: ~(primitive index * 2 + is sphere)
+};
+
+struct Bvh {
+    std::vector<BvhNode> nodes;
+    std::vector<SpherePrimitive> spheres;
+    std::vector<QuadPrimitive> quads;
+    std::vector<int32_t> sphereShape, quadShape;  // the scene's shape index of each primitive
+};
+
+struct BvhBuilder {
+    struct Ref {  // one shape during the build; partitioned in place, so every pass is sequential
+        Aabb box;
+        Vec3 centroid;
+        int shape;
+    };
+    std::vector<Ref> refs;
+    Bvh& bvh;
+    const std::vector<Shape>& shapes;
+
+    // Leaves are made in leaf order, so a node's leaf children lie side by side in memory.
+    int32_t leafCode(int shape) {
+        const Shape& s = shapes[shape];
+        if (s.type == Shape::Sphere) {
+            bvh.spheres.push_back({s.p, s.radius});
+            bvh.sphereShape.push_back(shape);
+            return ~int32_t((bvh.spheres.size() - 1) * 2 + 1);
+        }
+        bvh.quads.push_back({s.p, s.u, s.v, quadW(s.u, s.v)});
+        bvh.quadShape.push_back(shape);
+        return ~int32_t((bvh.quads.size() - 1) * 2);
+    }
+
+    Aabb rangeBounds(int b, int e) const {
+        Aabb box;
+        for (int i = b; i < e; ++i) box.grow(refs[i].box);
+        return box;
+    }
+    // Binned SAH on all three axes; returns the right half's first index and the halves' boxes.
+    int split(int b, int e, Aabb& leftBox, Aabb& rightBox) {
+        constexpr int kBins = 16;
+        Aabb cb;
+        for (int i = b; i < e; ++i) cb.grow(refs[i].centroid);
+        Aabb bin[3][kBins];
+        int count[3][kBins] = {{0}};
+        float scale[3];
+        for (int a = 0; a < 3; ++a) scale[a] = cb.hi[a] > cb.lo[a] ? kBins / (cb.hi[a] - cb.lo[a]) : 0;
+        auto binOf = [&](const Ref& r, int a) { return std::min(kBins - 1, int((r.centroid[a] - cb.lo[a]) * scale[a])); };
+        for (int i = b; i < e; ++i)
+            for (int a = 0; a < 3; ++a) {
+                int k = binOf(refs[i], a);
+                bin[a][k].grow(refs[i].box);
+                ++count[a][k];
+            }
+        float bestCost = kInf;
+        int bestAxis = -1, bestBin = 0;
+        for (int a = 0; a < 3; ++a) {
+            if (scale[a] == 0) continue;
+            float rightArea[kBins];
+            int rightCount[kBins];
+            Aabb acc;
+            int n = 0;
+            for (int k = kBins - 1; k > 0; --k) {
+                acc.grow(bin[a][k]);
+                n += count[a][k];
+                rightArea[k] = acc.halfArea();
+                rightCount[k] = n;
+            }
+            acc = Aabb();
+            n = 0;
+            for (int k = 0; k < kBins - 1; ++k) {
+                acc.grow(bin[a][k]);
+                n += count[a][k];
+                float cost = acc.halfArea() * n + rightArea[k + 1] * rightCount[k + 1];
+                if (n > 0 && rightCount[k + 1] > 0 && cost < bestCost) { bestCost = cost; bestAxis = a; bestBin = k; }
+            }
+        }
+        if (bestAxis < 0) {  // all centroids in one point: split by count
+            int mid = (b + e) / 2;
+            leftBox = rangeBounds(b, mid);
+            rightBox = rangeBounds(mid, e);
+            return mid;
+        }
+        leftBox = rightBox = Aabb();
+        for (int k = 0; k < kBins; ++k) (k <= bestBin ? leftBox : rightBox).grow(bin[bestAxis][k]);
+        return int(std::partition(refs.begin() + b, refs.begin() + e, [&](const Ref& r) { return binOf(r, bestAxis) <= bestBin; }) -
+                   refs.begin());
+    }
+    int build(int b, int e, const Aabb& box) {
+        int index = int(bvh.nodes.size());
+        bvh.nodes.emplace_back();
+        struct Range { int b, e; Aabb box; } r[kWidth];
+        int n = 1;
+        r[0] = {b, e, box};
+        while (n < kWidth) {  // open the largest child that is more than one shape
+            int pick = -1;
+            for (int i = 0; i < n; ++i)
+                if (r[i].e - r[i].b > 1 && (pick < 0 || r[i].box.halfArea() > r[pick].box.halfArea())) pick = i;
+            if (pick < 0) break;
+            Aabb left, right;
+            int mid = split(r[pick].b, r[pick].e, left, right);
+            r[n++] = {mid, r[pick].e, right};
+            r[pick] = {r[pick].b, mid, left};
+        }
+        BvhNode node;
+        for (int i = 0; i < kWidth; ++i) {
+            Aabb childBox = i < n ? r[i].box : Aabb();
+            for (int a = 0; a < 3; ++a) {
+                node.box[2 * a][i] = childBox.lo[a];
+                node.box[2 * a + 1][i] = childBox.hi[a];
+            }
+            node.child[i] = i < n && r[i].e - r[i].b == 1 ? leafCode(refs[r[i].b].shape) : 0;
+        }
+        for (int i = 0; i < n; ++i)  // inner children after all the leaves, which stay side by side
+            if (r[i].e - r[i].b > 1) node.child[i] = build(r[i].b, r[i].e, r[i].box);
+        bvh.nodes[index] = node;
+        return index;
+    }
+};
+
+inline Bvh buildBvh(const std::vector<Shape>& shapes) {
+    Bvh bvh;
+    if (shapes.empty()) return bvh;
+    BvhBuilder builder{{}, bvh, shapes};
+    builder.refs.reserve(shapes.size());
+    for (size_t i = 0; i < shapes.size(); ++i) {
+        Aabb box = shapeBounds(shapes[i]);
+        builder.refs.push_back({box, (box.lo + box.hi) * 0.5f, int(i)});
+    }
+    bvh.nodes.reserve(2 * shapes.size() / (kWidth - 1) + 1);
+    builder.build(0, int(shapes.size()), builder.rangeBounds(0, int(shapes.size())));
+    return bvh;
+}
+
+// The ray's constants for the slab tests.
+struct RayBoxTest {
+    int nearX, nearY, nearZ;   // which row of BvhNode::box is the entry plane on each axis
+#if defined(__SSE2__)
+    Lanes ox, oy, oz, ix, iy, iz;
+#else
+    Vec3 o, inv;
+#endif
+    explicit RayBoxTest(const Ray& r) {
+        Vec3 inv(1 / r.d.x, 1 / r.d.y, 1 / r.d.z);  // +-inf for +-0
+        nearX = inv.x >= 0 ? 0 : 1;
+        nearY = inv.y >= 0 ? 2 : 3;
+        nearZ = inv.z >= 0 ? 4 : 5;
+#if defined(__SSE2__)
+        ox = SIMD(set1_ps)(r.o.x), oy = SIMD(set1_ps)(r.o.y), oz = SIMD(set1_ps)(r.o.z);
+        ix = SIMD(set1_ps)(inv.x), iy = SIMD(set1_ps)(inv.y), iz = SIMD(set1_ps)(inv.z);
+#else
+        o = r.o;
+        this->inv = inv;
+#endif
+    }
+    // Bit i set when the ray meets child i's box within (0, tmax); tEntry receives the entry distances.
+    int test(const BvhNode& n, float tmax, float tEntry[kWidth]) const {
+        constexpr float kWiden = 1 + 2 * (3 * 0x1p-24f) / (1 - 3 * 0x1p-24f);  // 1 + 2 gamma_3
+        // Each candidate (possibly NaN) is the first operand, the running bound the second.
+#if defined(__SSE2__)
+        auto slab = [&](int row, Lanes o, Lanes inv) { return SIMD(mul_ps)(SIMD(sub_ps)(SIMD(load_ps)(n.box[row]), o), inv); };
+        Lanes t0 = SIMD(max_ps)(slab(nearZ, oz, iz), SIMD(setzero_ps)());
+        t0 = SIMD(max_ps)(slab(nearX, ox, ix), SIMD(max_ps)(slab(nearY, oy, iy), t0));
+        Lanes t1 = SIMD(min_ps)(slab(nearZ ^ 1, oz, iz), SIMD(set1_ps)(tmax));
+        t1 = SIMD(min_ps)(slab(nearX ^ 1, ox, ix), SIMD(min_ps)(slab(nearY ^ 1, oy, iy), t1));
+        SIMD(storeu_ps)(tEntry, t0);
+        return SIMD(movemask_ps)(lessEqual(t0, SIMD(mul_ps)(t1, SIMD(set1_ps)(kWiden))));
+#else
+        int mask = 0;
+        for (int i = 0; i < kWidth; ++i) {
+            // fmax/fmin ignore a NaN operand, like the operand order of the SIMD paths.
+            float t0 = std::fmax(std::fmax((n.box[nearX][i] - o.x) * inv.x, (n.box[nearY][i] - o.y) * inv.y),
+                                 std::fmax((n.box[nearZ][i] - o.z) * inv.z, 0.0f));
+            float t1 = std::fmin(std::fmin((n.box[nearX ^ 1][i] - o.x) * inv.x, (n.box[nearY ^ 1][i] - o.y) * inv.y),
+                                 std::fmin((n.box[nearZ ^ 1][i] - o.z) * inv.z, tmax));
+            tEntry[i] = t0;
+            mask |= (t0 <= t1 * kWiden) << i;
+        }
+        return mask;
+#endif
+    }
+};
+
+// Closest hit: nearest child first, each hit shortening the ray; any hit (shadow rays): the first ends it.
+template <bool anyHit>
+inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
+    Hit hit;
+    if (bvh.nodes.empty()) return hit;
+    RayBoxTest boxTest(ray);
+    Ray r = ray;
+    struct Entry { int32_t node; float t; } stack[64 * kWidth];  // at most W-1 more per level
+    int top = 0;
+    stack[top++] = {0, 0};
+    while (top > 0) {
+        Entry e = stack[--top];
+        if (!anyHit && e.t > r.tmax) continue;  // a closer hit was found since this was pushed
+        const BvhNode& n = bvh.nodes[e.node];
+        float tEntry[kWidth];
+        int base = top;
+        for (int mask = boxTest.test(n, r.tmax, tEntry); mask; mask &= mask - 1) {
+            int i = __builtin_ctz(mask);
+            if (n.child[i] < 0) {  // a leaf: test its shape now, which may shorten the ray
+                int code = ~n.child[i], k = code >> 1;
+                float t = code & 1 ? intersectSphere(bvh.spheres[k].centre, bvh.spheres[k].radius, r)
+                                   : intersectQuad(bvh.quads[k].q, bvh.quads[k].u, bvh.quads[k].v, bvh.quads[k].w, r);
+                if (t < r.tmax) {
+                    if (anyHit) return {t, 0};  // a shadow ray: that something is there is all it asks
+                    r.tmax = hit.t = t;
+                    hit.shape = code & 1 ? bvh.sphereShape[k] : bvh.quadShape[k];
+                }
+                continue;
+            }
+            // Ask for the child's cache lines now, long before it is popped (large scenes wait on them).
+            const char* child = reinterpret_cast<const char*>(&bvh.nodes[n.child[i]]);
+            for (size_t line = 0; line < sizeof(BvhNode); line += 64) __builtin_prefetch(child + line);
+            // A shadow ray's hits do not shorten it: sorting its children costs more than it saves.
+            if (anyHit) { stack[top++] = {n.child[i], tEntry[i]}; continue; }
+            // Insert so that the nearest child ends on top of the stack (front to back).
+            int j = top++;
+            while (j > base && stack[j - 1].t < tEntry[i]) { stack[j] = stack[j - 1]; --j; }
+            stack[j] = {n.child[i], tEntry[i]};
+        }
+    }
+    return hit;
+}
+inline void buildAcceleration(Scene& scene) { scene.bvh = std::make_shared<const Bvh>(buildBvh(scene.shapes)); }
+
+// == Appendix C. Sobol points, fast ==========================================================
+// The same numbers as section 1's sobolSample (test_sampler holds them equal), for every path's
+// first 32 dimensions: the xor of columns done four dimensions per instruction, the per-dimension
+// scramble seeds composed at compile time, the bit reversal by a table.
+// Dimension d's scramble seed: step d+1 of an LCG from the stream's key, the steps composed at compile time.
+struct LcgJump {
+    uint64_t mul, add;
+};
+struct LcgJumps {
+    LcgJump step[kLowDiscrepancyDimensions];
+};
+constexpr LcgJumps makeLcgJumps() {
+    LcgJumps J{};
+    uint64_t mul = 1, add = 0;
+    for (uint32_t d = 0; d < kLowDiscrepancyDimensions; ++d) {
+        mul *= 6364136223846793005ULL;
+        add = add * 6364136223846793005ULL + 1442695040888963407ULL;
+        J.step[d] = {mul, add};
+    }
+    return J;
+}
+constexpr LcgJumps kScrambleSeeds = makeLcgJumps();
+
+// Digit order back to a fraction's 24 leading digits: the bits' order reversed a byte at a time.
+struct ByteReversal {
+    uint8_t reversed[256];
+};
+constexpr ByteReversal makeByteReversal() {
+    ByteReversal R{};
+    for (uint32_t i = 0; i < 256; ++i) R.reversed[i] = uint8_t(reverseBits(i) >> 24);
+    return R;
+}
+constexpr ByteReversal kByteReversal = makeByteReversal();
+inline uint32_t fractionDigits(uint32_t digits) {
+    const uint8_t* r = kByteReversal.reversed;
+    return uint32_t(r[digits & 255]) << 16 | uint32_t(r[(digits >> 8) & 255]) << 8 | r[(digits >> 16) & 255];
+}
+
+// Sample `index`'s point, unscrambled: the xor of C_d's columns picked by index's bits, four dimensions at once.
+inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
+    typedef uint32_t FourDimensions __attribute__((vector_size(16)));
+    FourDimensions point[kLowDiscrepancyDimensions / 4] = {};
+    for (uint32_t i = index; i; i &= i - 1) {  // bit k of index set: column k of every dimension
+        const uint32_t* column = kSobol.column[__builtin_ctz(i)];
+        for (uint32_t q = 0; q < kLowDiscrepancyDimensions / 4; ++q) {
+            FourDimensions c;
+            std::memcpy(&c, column + 4 * q, sizeof c);
+            point[q] ^= c;
+        }
+    }
+    std::memcpy(digits, point, sizeof point);
+}
+// Every pixel's camera stream draws point `pass` in pass `pass`: each thread keeps the last.
+inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
+    thread_local uint32_t cachedIndex = ~0u, cached[kLowDiscrepancyDimensions];
+    if (index != cachedIndex) sobolPoint(index, cached), cachedIndex = index;
+    std::copy(cached, cached + kLowDiscrepancyDimensions, digits);
+}
+// Coordinates first..first+3, scrambled by their own seeds (not with --no-scramble, the mistake),
+// as fractions; uniform() asks for four at a time: four independent hashes overlap.
+inline void Rng::scrambleCoordinates(uint32_t first) {
+    for (uint32_t d = first; d < first + 4; ++d) {
+        const LcgJump& jump = kScrambleSeeds.step[d];
+        uint32_t seed = uint32_t((jump.mul * scrambleKey + jump.add) >> 32);
+        point[d] = fractionDigits(scrambled ? scrambleDigits(point[d], seed) : point[d]);
+    }
+}

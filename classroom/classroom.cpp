@@ -225,94 +225,15 @@ inline std::map<std::string, std::vector<OptionRow<CR>>> toolRows() {
     };
 }
 
-// The lecture rows' full help, in ./bdpt --help (bdpt.cpp's own table has one line each).
-inline const std::map<std::string, const char*> kFullHelp = {
-    {"--method",
-     "pt   (a) eye tracing: emission counted only when a path hits a light\n"
-     "nee  (b) path tracing with next-event estimation\n"
-     "lt   (c) light tracing: light paths splatted onto the film\n"
-     "ir   (d) instant radiosity: camera paths gather virtual point lights\n"
-     "bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)\n"
-     "vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)\n"
-     "mlt  (see later) Metropolis light transport (Veach's): Markov chains of\n"
-     "     paths, mutated by replacing a few vertices (bidirectional mutation) or\n"
-     "     by moving them a little (lens, caustic, multi-chain perturbations);\n"
-     "     --spp N means N mutations per pixel on average\n"
-     "pssmlt (see later) primary-sample-space MLT (Kelemen's): chains that mutate\n"
-     "     the random numbers of bdpt's whole sample\n"
-     "mmlt (see later) multiplexed MLT (pbrt's): pssmlt whose state also picks one\n"
-     "     path length and one strategy (s,t), weighted by bdpt's MIS"},
-    {"--heuristic",
-     "bdpt, vcm, and the Metropolis methods' bdpt samples: MIS weights balance\n"
-     "(default), power, max (the slides' maximum heuristic) or uniform (1 /\nnumber of strategies able to make the path)"},
-    {"--radius",
-     "vcm: merging radius r_0 of the first pass (default: one pixel's footprint\n"
-     "where the central camera ray meets the scene); 0: no merging, as bdpt.\n"
-     "vcm keeps a pass's light subpaths, about 140 bytes per light vertex (the\n"
-     "vertex, and a grid record if mergeable), 1 to 6 light vertices per pixel on\n"
-     "the scenes: the summary line reports both"},
-    {"--alpha",
-     "vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1\n(default 0.75)"},
-    {"--sigma",
-     "pssmlt, mmlt: a small step moves each number by a normal of deviation S,\nwrapped into [0,1) (default 0.01)"},
-    {"--bootstrap",
-     "mlt, pssmlt, mmlt: independent samples that estimate the image's\n"
-     "normalisation b and choose the chains' starts in proportion to their\n"
-     "brightness (default 100000 for pssmlt, 200000 for mlt, 1000000 for mmlt,\nwhich spreads them over the path lengths)"},
-    {"--mutations",
-     "mlt: Veach's mutations to use, among bidir, lens, caustic and multichain,\n"
-     "comma-separated; bidir is always among them (default: all four)"},
-    {"--chain-short-paths",
-     "mlt, pssmlt, mmlt: the chains render paths of one and two segments too\n"
-     "(by default a bdpt sample per pixel renders them, and the chains the rest)"},
-    {"--roulette",
-     "lt, ir, bdpt, vcm and the Metropolis methods' bdpt samples (mlt's and\n"
-     "mmlt's own walks have chosen lengths): how subpaths end: throughput (q from\n"
-     "the throughput after --rr-start bounces, as pt and nee), albedo (q = the\n"
-     "material's albedo at every vertex, counted in bdpt's MIS densities) or off\n"
-     "(only --maxdepth); default albedo"},
-    {"--rr-start",
-     "pt, nee (and --roulette throughput): Russian roulette from bounce N on\n"
-     "(default 3); N > --maxdepth turns it off (lecture notes, page 9)"},
-    {"--symmetric-refraction",
-     "swap the two refraction rules: eye paths scale refracted radiance\n"
-     "like power (no eta^2), light paths scale power like radiance (eta^2)"},
-    {"--fixed-ray-offset",
-     "push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)\n"
-     "instead of the hit point's error bound (see tests/thin-gap.scene)"},
-    {"--delta-density-one",
-     "bdpt, vcm, Metropolis: after a mirror or glass, store the MIS densities\n"
-     "as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy\ns = 0"},
-    {"--fixed-start",
-     "mlt, pssmlt, mmlt: every chain starts from one fixed state (the first bootstrap\n"
-     "sample that carries light) instead of one chosen in proportion to its\n"
-     "brightness: start-up bias, visible at short runs"},
-    {"--no-scramble",
-     "--sampler sobol without its random scrambles: every pixel draws the same\n"
-     "point in each pass, so neighbouring pixels' film positions, bounces and\n"
-     "lamp points move together (a biased, patterned image)"},
-    {"--sampler",
-     "where each pixel sample's numbers come from: sobol (default), the points\n"
-     "of an Owen-scrambled Sobol sequence in its first 32 dimensions (PCG32\n"
-     "past them), or random (independent PCG32 numbers throughout)"},
-    {"--large-step",
-     "pssmlt, mmlt: probability of a large step, every number drawn afresh (0.3)"},
-    {"--strategies",
-     "bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length\n"
-     "(vcm: and one of all merges per path length), unweighted and MIS-weighted,\n"
-     "and two pyramid montages, into DIR (each pyramid row brightened by the\n"
-     "stops printed in its tiles' labels)"},
-};
 
-// The lecture's table with the tools' rows among its own, the full help, and the exit statuses
-// with the tools'.
+// The lecture's table (its help texts as they are) with the tools' rows among its own, and the exit
+// statuses with the tools'.
 inline std::vector<OptionRow<CR>> classroomOptions() {
     const std::map<std::string, std::vector<OptionRow<CR>>> tools = toolRows();
     std::vector<OptionRow<CR>> table;
     for (const OptionRow<CommandLine>& o : kOptions) {
         OptionRow<CR> row{o.name, o.value, o.methods, o.whose, o.help, nullptr};
         if (o.apply) row.apply = [lecture = o.apply](CR& cl, A& a) { lecture(cl, a); };
-        if (o.name && kFullHelp.count(o.name)) row.help = kFullHelp.at(o.name);
         if (!o.name && std::string(o.help).rfind("Exit status", 0) == 0)
             row.help = "Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene\n"
                        "file or option, 3 abandoned by a second Ctrl-C (nothing written), 4 out of memory (nothing\n"
@@ -980,8 +901,8 @@ inline int runSideBySide(const std::vector<std::string>& args, ClassroomLine& cl
     return 0;
 }
 
-// What a method adds to the summary line, read from what its last pass left: vcm's radius and
-// light vertices, the chains' b and acceptance, what the clamp removed.
+// What a method adds to the summary line: vcm's radius and light vertices (counted over the passes
+// by the classroom), then the lecture's methodSummary (the chains' b and acceptance, the clamp).
 inline void printMethodSummary(const ClassroomLine& cl, const Scene& scene, const RenderResult& r, const VcmTotals& vcm, std::ostream& out) {
     char text[256];
     if (cl.opt.method == Method::VCM) {
@@ -992,31 +913,7 @@ inline void printMethodSummary(const ClassroomLine& cl, const Scene& scene, cons
                       vcm.mostBytes / 1e6, vcm.mostBytes * double(r.passes) / std::max(1.0, double(vcm.lightVertices)));
         out << text;
     }
-    const MetropolisPass& mp = r.method.metropolis;
-    long long accepted = 0, proposed = 0, acceptedBy[4] = {0, 0, 0, 0}, proposedBy[4] = {0, 0, 0, 0};
-    for (const PrimarySampleChain& c : mp.chains) accepted += c.accepted, proposed += c.proposed;
-    for (const PathChain& c : mp.paths) {
-        accepted += c.accepted, proposed += c.proposed;
-        for (int m = 0; m < 4; ++m) acceptedBy[m] += c.acceptedBy[m], proposedBy[m] += c.proposedBy[m];
-    }
-    if (isMetropolis(cl.opt.method)) {
-        std::snprintf(text, sizeof text, "%s: b = %.6g +- %.2g (bootstrap of %d samples); %d chains accepted %.1f%% of %lld mutations\n",
-                      methodName(cl.opt.method), mp.b, mp.bStandardError, bootstrapSamples(cl.opt), chainCount(cl.opt),
-                      100.0 * double(accepted) / double(std::max(1LL, proposed)), proposed);
-        out << text;
-    }
-    if (cl.opt.method == Method::MLT) {
-        out << "mlt: accepted";
-        const char* names[4] = {"bidirectional", "lens", "caustic", "multi-chain"};
-        for (int m = 0; m < 4; ++m) {
-            std::snprintf(text, sizeof text, "%s %s %.1f%% of %lld", m ? "," : "", names[m],
-                          100.0 * double(acceptedBy[m]) / double(std::max(1LL, proposedBy[m])), proposedBy[m]);
-            out << text;
-        }
-        out << " (a proposal that could not be made counts as refused)\n";
-    }
-    if (cl.opt.method == Method::IR && cl.opt.clamp > 0)
-        out << "clamp " << cl.opt.clamp << " removed " << 100 * r.clampRemoved() << "% of the energy gathered from VPLs\n";
+    out << methodSummary(cl.opt, r);
 }
 
 // Writes the render's files: the PNG, its PFM and (--strategies) the strategy images and pyramids.

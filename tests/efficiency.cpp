@@ -199,10 +199,10 @@ static int mutationTable(const std::vector<std::string>& scenes) {
         for (PathChain& chain : mp.paths) {
             if (!(chain.current.f > 0)) continue;
             for (int i = 0; i < 256; ++i) {
-                int which = 0;
                 double t0 = threadCpuSeconds();
-                double a = mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal, &which);
-                int m = which == kBidirectional ? 0 : which == kLens ? 1 : which == kCaustic ? 2 : 3;
+                chain.proposal.mutation = 0;
+                double a = mutate(scene, walk, lengths, chain.current, chain.rng, chain.proposal);
+                int m = mutationIndex(chain.proposal.mutation);
                 seconds[m] += threadCpuSeconds() - t0;
                 ++proposed[m], ++all;
                 if (a > 0) {

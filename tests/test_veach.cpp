@@ -482,10 +482,9 @@ TEST_CASE("mlt's acceptance counts the choice of the mutation where x and y admi
     for (const MutatedPath& x : startPaths(scene, m.opt, 300))
         for (int proposal = 0; proposal < 30; ++proposal) {
             MutatedPath y;
-            int which = 0;
-            double a = mutate(scene, m.walk, m.range, x, rng, y, &which);
+            double a = mutate(scene, m.walk, m.range, x, rng, y);
             int from, kd, ka;
-            if (which != kBidirectional || !(a > 0) || !replacedRange(x, y, from, kd, ka)) continue;
+            if (y.mutation != kBidirectional || !(a > 0) || !replacedRange(x, y, from, kd, ka)) continue;
             double ratio = y.f * T.transition(y, x, from, ka, kd) / (x.f * T.transition(x, y, from, kd, ka));
             double expected = std::min(1.0, ratio * count(x) / count(y));
             ++compared;
