@@ -838,7 +838,6 @@ struct SampleOptions {
     int vplPaths = 16;         // ir: light paths traced per pass, each leaving VPLs
     float clamp = 0;           // ir: > 0 bounds the geometry term G at this value
     Heuristic heuristic = Heuristic::Balance;  // bdpt: how strategies are weighted
-    int strategyMaxLength = 0; // bdpt, vcm: > 0 records each strategy's contribution up to this path length
     float mergeRadius = -1;    // vcm: r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
     float alpha = 0.75f;       // vcm: r(n) = r_0 n^((alpha-1)/2) in pass n
     float largeStep = 0.3f;    // pssmlt, mmlt: probability of a large step (every number afresh)
@@ -855,8 +854,10 @@ struct SampleOptions {
 // What a run reads besides: how many passes, and on how many threads.
 struct RenderOptions : SampleOptions {
     int spp = 16;              // passes of one sample per pixel
-    double seconds = 0;        // > 0: render passes until this much time has passed
+    double seconds = 0;        // > 0: render passes until this many CPU seconds (all threads) are spent
+    bool wallTime = false;     // --wall-time: seconds counts the wall clock instead
     int threads = 0;           // 0: all cores
+    int strategyMaxLength = 0; // bdpt, vcm: > 0 adds up each strategy's contribution up to this path length (--strategies)
 };
 
 // The kinds of random stream, each its own salt of the seed: numbers that meet in one path must come
@@ -902,7 +903,8 @@ struct StrategySplat {
 // What one image row's samples leave besides their pixels' values; rows are merged in order.
 struct RowOutput {
     std::vector<Splat> splats;
-    std::vector<StrategySplat> strategySplats;  // SampleOptions::strategyMaxLength > 0
+    int strategyMaxLength = 0;                   // the film's strategy images: paths of at most this many segments
+    std::vector<StrategySplat> strategySplats;  // ... each strategy's contribution to them
     long long nonFinite = 0;
     double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: what the clamp removed
 };
@@ -1500,16 +1502,19 @@ inline Rng lightPathRng(const SampleOptions& opt, int pixel, int pass) {
     return sampleRng(opt, kLightPathStream, uint64_t(pixel), uint64_t(pass));
 }
 
-// Every connection (s,t) of a camera and a light subpath, MIS-weighted; each recorded up to strategyMaxLength.
+// Every connection (s,t) of a camera and a light subpath, MIS-weighted. visit(C_{s,t} and w_{s,t})
+// sees each strategy of at most visitLength segments as it is made: the film's strategy images
+// (below), or mlt's bootstrap choosing a start (section 8 (h)).
+template <class Visit>
 inline Vec3 connectSubpaths(const Scene& scene, const SampleOptions& opt, Subpath light, const std::vector<PathVertex>& camera,
-                            int ownPixel, double mergeEta, RowOutput& out) {
+                            int ownPixel, double mergeEta, RowOutput& out, int visitLength, const Visit& visit) {
     Vec3 L(0);
     for (int t = 1; t <= int(camera.size()); ++t)
         for (int s = 0; s <= light.size(); ++s) {
             int bounces = s + t - 2;
             if (bounces < opt.minDepth || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
-            bool record = s + t - 1 <= opt.strategyMaxLength;
-            if (s == 1 && t == 1 && !record) continue;  // weight 0 (misWeight): spare its shadow ray
+            bool visited = s + t - 1 <= visitLength;
+            if (s == 1 && t == 1 && !visited) continue;  // weight 0 (misWeight): spare its shadow ray
             int pixel = ownPixel;
             Connection connection;
             Vec3 c = connectStrategy(scene, light, s, camera, t, connection, pixel);
@@ -1517,9 +1522,14 @@ inline Vec3 connectSubpaths(const Scene& scene, const SampleOptions& opt, Subpat
             float w = misWeight(scene, light, s, camera, t, opt.heuristic, connection, mergeEta);
             if (t == 1) out.splats.push_back({pixel, c * w});
             else L += c * w;
-            if (record) out.strategySplats.push_back({pixel, c, w, s, t});
+            if (visited) visit(StrategySplat{pixel, c, w, s, t});
         }
     return L;
+}
+inline Vec3 connectSubpaths(const Scene& scene, const SampleOptions& opt, Subpath light, const std::vector<PathVertex>& camera,
+                            int ownPixel, double mergeEta, RowOutput& out) {
+    return connectSubpaths(scene, opt, light, camera, ownPixel, mergeEta, out, out.strategyMaxLength,
+                           [&out](const StrategySplat& c) { out.strategySplats.push_back(c); });
 }
 
 // One bdpt sample: a camera subpath through (filmX, filmY), a light subpath, all their connections.
@@ -1769,7 +1779,7 @@ inline Vec3 mergeCameraVertices(const Scene& scene, const SampleOptions& opt, co
             float w = mergeWeight(scene, light, int(merge->index), camera, t, opt.heuristic, vp.mergeEta, pdf, pdfReverse);
             L += c * w;
             int k = int(merge->index) + t - 1;  // path length: index + 1 light vertices, t camera, one shared
-            if (k <= opt.strategyMaxLength) out.strategySplats.push_back({ownPixel, c, w, int(merge->index), t, true});
+            if (k <= out.strategyMaxLength) out.strategySplats.push_back({ownPixel, c, w, int(merge->index), t, true});
         }
     }
     return L;
@@ -2660,29 +2670,26 @@ inline void tracePrimarySamplePass(const Scene& scene, const SampleOptions& opt,
 inline double pathBootstrapSample(const Scene& scene, const SampleOptions& opt, int i, double pick, MutatedPath* start) {
     thread_local std::vector<PathVertex> light, camera, full, startLight, startCamera;
     thread_local RowOutput out;
-    SampleOptions record = opt;
-    record.strategyMaxLength = opt.maxDepth + 1;  // every strategy's contribution and weight
-    record.minDepth = shortestChainPath(opt) - 1;
+    SampleOptions walk = opt;
+    walk.minDepth = shortestChainPath(opt) - 1;  // the chains' lengths only
     Rng cameraRng = bootstrapRng(opt, i, 0), lightRng = bootstrapRng(opt, i, 1);
     FilmPoint film = uniformFilmPoint(scene.camera, cameraRng);
-    cameraSubpath(scene, record, film.x, film.y, cameraRng, camera);
-    lightSubpath(scene, record, lightRng, light);
-    out.strategySplats.clear();
+    cameraSubpath(scene, walk, film.x, film.y, cameraRng, camera);
+    lightSubpath(scene, walk, lightRng, light);
     out.splats.clear();
-    connectSubpaths(scene, record, light, camera, pixelAt(scene.camera, film), 0, out);
     double sum = 0;
-    for (const StrategySplat& c : out.strategySplats) {
+    connectSubpaths(scene, walk, light, camera, pixelAt(scene.camera, film), 0, out, walk.maxDepth + 1, [&](const StrategySplat& c) {
         double w = luminance(c.value * c.weight);
-        if (!(w > 0) || !std::isfinite(w)) continue;
+        if (!(w > 0) || !std::isfinite(w)) return;
         sum += w;
-        if (!start || pick >= sum) continue;
+        if (!start || pick >= sum) return;
         full.assign(light.begin(), light.begin() + c.s);
         for (int j = c.t - 1; j >= 0; --j) full.push_back(camera[j]);
         subpathThrough(scene, full, c.s, Transport::Importance, startLight);
         subpathThrough(scene, full, c.t, Transport::Radiance, startCamera);
         if (!joinPath(scene, startLight, c.s, startCamera, c.t, *start)) start->f = 0;
         start = nullptr;
-    }
+    });
     return sum;
 }
 
@@ -2763,14 +2770,26 @@ inline double imageMean(const Image& img) {
     return s / (3.0 * std::max<size_t>(1, img.pixels.size()));
 }
 
-// parallelRows: the rows shared out by an atomic counter; each worker's rays added to the caller's count.
+// A render's time is CPU time, every thread's it uses: a machine busy with other work gives the
+// same images for --time T, only later, and methods compare fairly (the wall clock would charge
+// each for the others' load).
+inline double threadCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+inline thread_local double gWorkerCpuSeconds = 0;  // what the workers of this thread's parallelRows ran
+
+// parallelRows: the rows shared out by an atomic counter; each worker's rays and CPU time added to the caller's.
 template <class Body>
 inline void parallelRows(int rows, int threads, const Body& body) {
     std::atomic<int> nextRow{0};
     std::atomic<bool> outOfMemory{false};
     std::vector<RayCount> traced(std::max(1, threads));
+    std::vector<double> cpu(std::max(1, threads), 0.0);
     auto worker = [&](int i) {
         RayCount before = gRaysTraced;
+        const double cpuBefore = i > 0 ? threadCpuSeconds() : 0;
         try {
             for (int y; (y = nextRow.fetch_add(1)) < rows;) body(y);
         } catch (const std::bad_alloc&) {  // thrown on, by the calling thread, once all have stopped
@@ -2778,12 +2797,14 @@ inline void parallelRows(int rows, int threads, const Body& body) {
             nextRow = rows;
         }
         traced[i] = {gRaysTraced.closest - before.closest, gRaysTraced.shadow - before.shadow};
+        if (i > 0) cpu[i] = threadCpuSeconds() - cpuBefore + gWorkerCpuSeconds;  // and its own workers'
     };
     std::vector<std::thread> pool;
     for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i);
     worker(0);
     for (std::thread& t : pool) t.join();
     for (int i = 1; i < threads; ++i) gRaysTraced.closest += traced[i].closest, gRaysTraced.shadow += traced[i].shadow;
+    for (int i = 1; i < threads; ++i) gWorkerCpuSeconds += cpu[i];
     if (outOfMemory) throw std::bad_alloc();
 }
 
@@ -2799,7 +2820,8 @@ struct RenderResult {
     Image variance;                 // per pixel and channel: variance of that mean (from the passes)
     int passes = 0;
     long long nonFinite = 0;        // NaN/inf samples and splats dropped
-    double seconds = 0;
+    double seconds = 0;             // wall-clock seconds
+    double cpuSeconds = 0;          // CPU seconds, all the render's threads together (--time's budget)
     double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: the energy gathered, before and after
     double clampRemoved() const { return energyUnclamped > 0 ? 1 - energyClamped / energyUnclamped : 0; }
     std::vector<Image> strategyImages;  // --strategies: [2 strategyImage(...) + weighted]
@@ -2860,7 +2882,7 @@ inline int mergeImageIndex(int k, int maxLength) { return maxLength * (maxLength
 inline int strategyImage(const StrategySplat& c, int maxLength) {
     return c.merge ? mergeImageIndex(c.s + c.t - 1, maxLength) : strategyIndex(c.s, c.t);
 }
-inline int strategyImageCount(const SampleOptions& opt) {  // vcm: one merge image per length
+inline int strategyImageCount(const RenderOptions& opt) {  // vcm: one merge image per length
     int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
     return opt.method == Method::VCM ? mergeImageIndex(L + 1, L) : L * (L + 3) / 2;
 }
@@ -2870,7 +2892,7 @@ struct Film {
     int width, height, strategyMaxLength;
     std::vector<double> sum, sumSq;
     std::vector<std::vector<double>> strategySum;
-    Film(int w, int h, const SampleOptions& opt)
+    Film(int w, int h, const RenderOptions& opt)
         : width(w), height(h), strategyMaxLength(opt.strategyMaxLength), sum(3 * size_t(w) * h, 0.0), sumSq(sum.size(), 0.0),
           strategySum(2 * strategyImageCount(opt), std::vector<double>(sum.size(), 0.0)) {}
     void addStrategy(int image, int pixel, Vec3 value) {
@@ -2939,6 +2961,7 @@ struct Rendering {
     void addPass() {
         const int W = scene.camera.width, H = scene.camera.height, p = result.passes;
         const RayCount before = gRaysTraced;  // parallelRows adds the other threads' rays to this one's
+        const double cpuBefore = threadCpuSeconds() + gWorkerCpuSeconds;  // and their CPU time
         const PassData data = preparePass(scene, opt, p, threads, storage);
         const SampleFunction sample = sampleFunction(opt.method);
         rowsDone = 0;
@@ -2946,6 +2969,7 @@ struct Rendering {
             RowOutput& row = rows[y];
             row.splats.clear();
             row.strategySplats.clear();
+            row.strategyMaxLength = opt.strategyMaxLength;
             row.nonFinite = 0;
             row.energyUnclamped = row.energyClamped = 0;
             for (int x = 0; x < W; ++x) {
@@ -2960,6 +2984,7 @@ struct Rendering {
         result.rays.shadow += gRaysTraced.shadow - before.shadow;
         film.addPass(pass, rows, result);
         result.passes = p + 1;
+        result.cpuSeconds += threadCpuSeconds() + gWorkerCpuSeconds - cpuBefore;
     }
     RenderResult finish() {
         result.seconds = secondsSince(start);
@@ -2969,9 +2994,10 @@ struct Rendering {
     }
 };
 
-// Passes until --spp of them are done, or until --time is up (at least one).
+// Passes until --spp of them are done, or until --time's CPU seconds (--wall-time's) are spent (at least one).
 inline bool morePasses(const Rendering& r) {
-    return r.opt.seconds > 0 ? secondsSince(r.start) < r.opt.seconds : r.result.passes < r.opt.spp;
+    if (!(r.opt.seconds > 0)) return r.result.passes < r.opt.spp;
+    return (r.opt.wallTime ? secondsSince(r.start) : r.result.cpuSeconds) < r.opt.seconds;
 }
 inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
     Rendering r(scene, opt);
@@ -3524,8 +3550,11 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      [](CL& cl, A&) { cl.opt.noScramble = true; }},
     {nullptr, "", {}, "", "Sampling", nullptr},
     {"--spp", "N", {}, "", "N passes of one sample per pixel (default 16)", [](CL& cl, A& a) { cl.opt.spp = int(a.integer(1, 1e8)); }},
-    {"--time", "SECONDS", {}, "", "render passes until SECONDS have passed (replaces --spp)",
+    {"--time", "SECONDS", {}, "", "render passes until SECONDS of CPU time are spent, all threads together (replaces --spp):\n"
+     "a busy machine gives the same image, later; two threads finish in about half as many wall seconds",
      [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7); }},
+    {"--wall-time", "SECONDS", {}, "", "render passes until SECONDS of wall-clock time have passed (replaces --spp)",
+     [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7), cl.opt.wallTime = true; }},
     {"--sampler", "S", {}, "", "where each pixel sample's numbers come from: sobol (default), the points\n"
      "of an Owen-scrambled Sobol sequence in its first 32 dimensions (PCG32\n"
      "past them), or random (independent PCG32 numbers throughout)",
@@ -3608,8 +3637,12 @@ void checkCombinations(Line& cl, const std::vector<OptionRow<Line>>& table, bool
         ArgReader::fail(std::string("--rr-start applies to pt, nee and --roulette throughput; --method ") + methodName(cl.opt.method) +
                         (cl.opt.roulette == Roulette::Albedo ? " ends its subpaths by --roulette albedo (the default), which acts from the first bounce on"
                                                              : " has --roulette off: no roulette at all"));
-    if (given("--time") && given("--spp"))
-        ArgReader::fail("--time and --spp both given: --time renders passes until the time is up, --spp a number of them; give one");
+    std::vector<std::string> budgets;
+    for (const char* o : {"--time", "--wall-time", "--spp"})
+        if (given(o)) budgets.push_back(o);
+    if (budgets.size() > 1)
+        ArgReader::fail(budgets[0] + " and " + budgets[1] + " both given: --time (CPU) and --wall-time render passes until the time "
+                        "is up, --spp a number of them; give one");
     if (!cl.strategiesDir.empty()) cl.opt.strategyMaxLength = cl.strategyLength;
 }
 
@@ -3624,10 +3657,10 @@ inline std::string raysPerSample(const RenderResult& r) {
 
 // What a render did: its passes and time, the image's mean, what it cost in rays, what it wrote.
 inline std::string summaryLine(const CommandLine& cl, const RenderResult& r, const std::string& pfm) {
-    char seconds[32];
-    std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);  // a hundredth: the clock's noise is larger
+    char seconds[64];
+    std::snprintf(seconds, sizeof seconds, "%.2f s (%.2f CPU s)", r.seconds, r.cpuSeconds);  // a hundredth: the clocks' noise is larger
     std::ostringstream line;
-    line << cl.scenePath << ": " << r.passes << " samples per pixel in " << seconds << " s, mean " << imageMean(r.image) << ", "
+    line << cl.scenePath << ": " << r.passes << " samples per pixel in " << seconds << ", mean " << imageMean(r.image) << ", "
          << r.nonFinite << " non-finite samples dropped, " << raysPerSample(r) << "; wrote " << cl.out << " and " << pfm << "\n";
     return line.str();
 }

@@ -23,13 +23,14 @@ struct CostClock {
     bool on = false;
     Cost current = Cost::Other;
     uint64_t last = 0, ticks[int(Cost::Count)] = {};
-    static uint64_t now() {
+    static uint64_t timeStampCounter() {
 #if defined(__x86_64__) || defined(__i386__)
-        return __builtin_ia32_rdtsc();  // the time stamp counter: a few cycles where a clock call is tens
+        return __builtin_ia32_rdtsc();  // a few cycles where a clock call is tens
 #else
         return uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
 #endif
     }
+    uint64_t (*now)() = &timeStampCounter;  // a test gives it a clock of its own, advanced by hand
     void switchTo(Cost next) {
         uint64_t t = now();
         ticks[int(current)] += t - last;
@@ -407,19 +408,17 @@ struct PassLog {
     const Image& ref;
     std::ofstream log;
     std::vector<double> running;
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), lastLive = start;
-    double measuring = 0;
+    std::chrono::steady_clock::time_point lastLive = std::chrono::steady_clock::now();
     PassLog(const ClassroomLine& c, const Scene& scene, const Image& reference)
         : cl(c), ref(reference), running(3 * size_t(scene.camera.width) * scene.camera.height, 0.0) {}
     bool open() {
         log.open(cl.logPath);
-        log << "scene,method,options,pass,spp,seconds,rmse,relmse,mean,bias,firefly,nan_count,rmse_without_lamp\n";
+        log << "scene,method,options,pass,spp,cpu_seconds,rmse,relmse,mean,bias,firefly,nan_count,rmse_without_lamp\n";
         return bool(log.flush());
     }
     void add(const Rendering& r) {
         const int p = r.result.passes - 1;
-        double seconds = secondsSince(start) - measuring;
-        auto t0 = std::chrono::steady_clock::now();
+        const double seconds = r.result.cpuSeconds;  // the render's own: the log's metrics are not in it
         Image mean(r.scene.camera.width, r.scene.camera.height);
         for (size_t i = 0; i < r.pass.size(); ++i)
             for (int c = 0; c < 3; ++c) mean.pixels[i][c] = float((running[3 * i + c] += r.pass[i][c]) / (p + 1));
@@ -439,7 +438,6 @@ struct PassLog {
             }
             log.flush();
         }
-        measuring += secondsSince(t0);
     }
 };
 
@@ -477,21 +475,19 @@ struct VcmTotals {
     }
 };
 
-inline double threadCpuSeconds() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
 // The classroom's render loop: the lecture's passes (Rendering), with after each one the pass
 // handed to `watch` (the log, the live image, a side-by-side panel), a Ctrl-C honoured between
 // passes, and the progress bar drawn by a thread of its own from the rows done in the pass.
-// cpuTime (a panel on one thread): --time counts this thread's CPU time, not the clock's.
+// --time counts the render's CPU seconds (the bar reads the process's, as a single render is all it runs).
 template <class Watch>
-inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, bool progressBar, bool& interrupted, const Watch& watch,
-                                  bool cpuTime = false) {
+inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, bool progressBar, bool& interrupted, const Watch& watch) {
     Rendering r(scene, opt);
-    const double cpuStart = threadCpuSeconds();
+    auto processCpuSeconds = [] {
+        timespec t{};
+        clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+        return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+    };
+    const double cpuStart = processCpuSeconds();
     std::atomic<int> passesDone{0};
     std::atomic<bool> finished{false};
     std::thread bar;
@@ -500,7 +496,8 @@ inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, 
             ProgressBar shown;
             for (; !finished; std::this_thread::sleep_for(std::chrono::milliseconds(100))) {
                 double passes = passesDone + double(r.rowsDone) / scene.camera.height;
-                double f = opt.seconds > 0 ? secondsSince(r.start) / opt.seconds : passes / std::max(1, opt.spp);
+                double spent = opt.wallTime ? secondsSince(r.start) : processCpuSeconds() - cpuStart;
+                double f = opt.seconds > 0 ? spent / opt.seconds : passes / std::max(1, opt.spp);
                 shown.show(std::min(0.999, f), passesDone, secondsSince(r.start) * (1 / std::max(1e-9, f) - 1));
             }
             shown.show(1, passesDone, 0);
@@ -513,7 +510,7 @@ inline RenderResult renderWatched(const Scene& scene, const RenderOptions& opt, 
         r.addPass();
         passesDone = r.result.passes;
         watch(r);
-    } while (cpuTime ? threadCpuSeconds() - cpuStart < opt.seconds : morePasses(r));
+    } while (morePasses(r));
     finished = true;
     if (bar.joinable()) bar.join();
     return r.finish();
@@ -530,7 +527,7 @@ struct SideBySidePanel {
     std::mutex lock;    // guards what follows, which the render's thread writes and the frames read
     std::vector<double> sum, sumSquares;  // per pixel and channel, over passes
     int passes = 0;
-    double seconds = 0;  // CPU seconds with --time (one thread), else wall seconds
+    double seconds = 0;  // CPU seconds, the panel's threads together
     bool done = false, outOfMemory = false;
     RenderResult result;
 };
@@ -650,7 +647,6 @@ inline std::string threeDigits(double x) {
 inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const Image& ref,
                                                   const SideBySideLayout& L, const std::vector<std::string>& title, const std::string& ratioKind) {
     std::vector<unsigned char> canvas(size_t(L.canvasW) * L.canvasH * 3, 24);
-    const bool cpu = panels[0]->cl.opt.seconds > 0;
     auto caption = [&](int tile, int line, const std::string& text) {
         drawLabel(canvas, L.canvasW, L.canvasH, L.tileX(tile), L.tileY(tile) + L.panelH + L.gap / 2 + line * 7 * L.scale, text, L.scale);
     };
@@ -662,7 +658,7 @@ inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<Si
         panelMean(panel, mean, nullptr, passes, seconds);
         blitZoomed(canvas, L.canvasW, toSRGBBytes(mean, panel.cl.exposure), L.W, L.H, L.zoom, L.tileX(int(i)), L.tileY(int(i)));
         const std::string slide = !ratioKind.empty() ? (i == 0 ? "right" : "deliberate mistake") : slideCaption(panel.label);
-        std::string counts = passes > 0 ? std::to_string(passes) + " spp, " + threeDigits(seconds) + (cpu ? " CPU s" : " s") : "starting";
+        std::string counts = passes > 0 ? std::to_string(passes) + " spp, " + threeDigits(seconds) + " CPU s" : "starting";
         caption(int(i), 0, slide.empty() ? panel.label : slide);
         caption(int(i), 1, slide.empty() ? counts : panel.label + ": " + counts);
         if (ref.width > 0 && passes > 0) caption(int(i), 2, "RMSE " + threeDigits(compareToReference(mean, ref, &panel.scene).rmse));
@@ -773,19 +769,16 @@ inline std::thread startPanel(SideBySidePanel& panel, int threads) {
     panel.sum.assign(3 * size_t(panel.scene.camera.width) * panel.scene.camera.height, 0.0);
     panel.sumSquares = panel.sum;
     return std::thread([&panel] {
-        const bool cpuTime = panel.cl.opt.seconds > 0 && panel.cl.opt.threads == 1;
-        const double cpuStart = threadCpuSeconds();
         auto addPass = [&](const Rendering& r) {
             std::lock_guard<std::mutex> hold(panel.lock);
             for (size_t i = 0; i < r.pass.size(); ++i)
                 for (int c = 0; c < 3; ++c) panel.sum[3 * i + c] += r.pass[i][c], panel.sumSquares[3 * i + c] += sqr(r.pass[i][c]);
             panel.passes = r.result.passes;
-            panel.seconds = cpuTime ? threadCpuSeconds() - cpuStart : secondsSince(r.start);
+            panel.seconds = r.result.cpuSeconds;
         };
         bool interrupted = false;
         try {
-            panel.result = renderWatched(panel.scene, panel.cl.opt, false, interrupted, addPass, cpuTime);
-            if (cpuTime) panel.result.seconds = threadCpuSeconds() - cpuStart;
+            panel.result = renderWatched(panel.scene, panel.cl.opt, false, interrupted, addPass);
         } catch (const std::bad_alloc&) {
             panel.outOfMemory = true;
         }
@@ -807,8 +800,8 @@ inline int writePanels(const std::vector<std::unique_ptr<SideBySidePanel>>& pane
         }
         if (cl.quiet) continue;
         char text[160];
-        std::snprintf(text, sizeof text, "%zu. %s: %d samples per pixel in %.2f %s on %d thread%s, mean %g, ", i + 1, panel.label.c_str(),
-                      panel.result.passes, panel.result.seconds, cl.opt.seconds > 0 ? "CPU s" : "s", panel.cl.opt.threads,
+        std::snprintf(text, sizeof text, "%zu. %s: %d samples per pixel in %.2f CPU s on %d thread%s, mean %g, ", i + 1, panel.label.c_str(),
+                      panel.result.passes, panel.result.cpuSeconds, panel.cl.opt.threads,
                       panel.cl.opt.threads > 1 ? "s" : "",
                       imageMean(panel.result.image));
         out << text << raysPerSample(panel.result) << "; wrote " << pfm;
@@ -944,7 +937,7 @@ inline int renderOne(ClassroomLine& cl, const Scene& scene, const Image& ref, st
         if (!cl.logPath.empty() || cl.liveSeconds > 0) passLog.add(r);
         if (cl.opt.method == Method::VCM) vcm.add(r.storage.vcm);
     };
-    if (cl.profile) cl.opt.threads = 1, gCostClock = CostClock(), gCostClock.on = true, gCostClock.last = CostClock::now();
+    if (cl.profile) cl.opt.threads = 1, gCostClock = CostClock(), gCostClock.on = true, gCostClock.last = gCostClock.now();
     double cpu0 = threadCpuSeconds();
     bool interrupted = false;
     RenderResult r = renderWatched(scene, cl.opt, !cl.quiet, interrupted, watch);

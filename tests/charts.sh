@@ -232,8 +232,8 @@ set datafile separator ","
 set logscale xy
 set key outside right
 set grid
-set title "$what, $RES, $RUN_SECONDS s a run\n--sampler sobol (solid) and random (dashed)"
-set xlabel "seconds (2 threads)"
+set title "$what, $RES, $RUN_SECONDS CPU s a run\n--sampler sobol (solid) and random (dashed)"
+set xlabel "CPU seconds (2 threads together)"
 set ylabel "RMSE without the lamp's pixels"
 set format y "%g"
 plot $plot
@@ -345,8 +345,8 @@ set logscale xy
 set yrange [$range]
 set key outside right
 set grid
-set title "$s ($RES): error against time\nRMSE without the lamp's pixels, $RUN_SECONDS s a run on 2 threads"
-set xlabel "seconds"
+set title "$s ($RES): error against CPU time\nRMSE without the lamp's pixels, $RUN_SECONDS CPU s a run on 2 threads"
+set xlabel "CPU seconds"
 set ylabel "RMSE"
 set format y "%g"
 plot $plot

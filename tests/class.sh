@@ -88,8 +88,8 @@ set key outside right
 set grid
 set autoscale fix
 set offsets 0, 0, graph 0.05, graph 0.05
-set title "$title\nRMSE against seconds (64x64, one thread each, two runs at a time)"
-set xlabel "seconds"
+set title "$title\nRMSE against CPU seconds (64x64, one thread each, two runs at a time)"
+set xlabel "CPU seconds"
 set ylabel "RMSE"
 set format y "%g"
 plot $plot

@@ -259,44 +259,92 @@ inline Material makeMaterial(Material::Type type, float albedo, float parameter 
     return m;
 }
 
-// Runs ./bdpt (the real program, its main and signal handler) with args, sends SIGINT after
-// firstAfter seconds and, if secondAfter > 0, again that much later; returns the exit status and
-// what it printed on stderr.
+// No test races the wall clock: a test of a running program waits for an event it can see (a file
+// written, a line printed, a pass logged), with a generous limit that only guards against a hang,
+// so that the suite passes as well on a machine whose cores are busy with other work.
+constexpr double kHangGuardSeconds = 600;
+// Waits until ready() holds, looking every 10 ms; false if it never did within the hang guard.
+template <class Ready>
+inline bool waitFor(const Ready& ready, double guardSeconds = kHangGuardSeconds) {
+    for (int i = 0; i < int(guardSeconds * 100); ++i) {
+        if (ready()) return true;
+        usleep(10000);
+    }
+    return ready();
+}
+// A program started in the background by `bash -c`, in a process group of its own, its stdout
+// and stderr into one file; stop() signals the group and returns the exit status (-1: killed).
+struct BackgroundRun {
+    pid_t pid = -1;
+    std::string outputFile;
+    std::string output() const { return readFile(outputFile); }
+    bool running() const { return waitpid(pid, nullptr, WNOHANG) == 0; }
+    int stop(int signal) {
+        kill(-pid, signal);
+        return wait();
+    }
+    int wait() {
+        int status = 0;
+        waitpid(pid, &status, 0);
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+};
+inline BackgroundRun startInBackground(const std::string& command, const std::string& outputFile) {
+    std::remove(outputFile.c_str());
+    BackgroundRun run{fork(), outputFile};
+    if (run.pid == 0) {
+        setpgid(0, 0);
+        int out = open(outputFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (out >= 0) dup2(out, 1), dup2(out, 2);
+        execl("/bin/bash", "bash", "-c", ("exec " + command).c_str(), (char*)nullptr);
+        _exit(127);
+    }
+    setpgid(run.pid, run.pid);  // whichever of the two runs first
+    return run;
+}
+// How many lines of a --log file are a pass of the given scene and method ("cornell,bdpt,").
+inline int loggedPasses(const std::string& logFile, const std::string& sceneAndMethod) {
+    std::istringstream log(readFile(logFile));
+    int rows = 0;
+    for (std::string line; std::getline(log, line);) rows += line.rfind(sceneAndMethod + ",", 0) == 0;
+    return rows;
+}
+// CPU seconds this process and its finished children have used: a budget that a busy machine
+// does not change, unlike the wall clock's.
+inline double cpuSecondsWithChildren() {
+    double seconds = 0;
+    for (int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
+        rusage u{};
+        getrusage(who, &u);
+        seconds += double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+    }
+    return seconds;
+}
+
+// Runs ./bdpt (the real program, its main and signal handler) with args, its stderr into
+// build/tmp/NAME.err; sends SIGINT once `ready` holds (an event: a pass logged, a line printed)
+// and, with secondAfter > 0, once more when the first press has been answered and at least
+// secondAfter seconds have passed (a second press within a second is the same press, so the
+// wait has a floor, not a ceiling). Returns the exit status and what it printed on stderr.
 struct InterruptedRun {
     int status;
     std::string err;
 };
-inline InterruptedRun interruptRun(const std::vector<std::string>& args, double firstAfter, double secondAfter) {
-    int pipeErr[2];
-    if (pipe(pipeErr) != 0) return {-1, ""};
-    pid_t pid = fork();
-    if (pid == 0) {
-        std::vector<char*> argv;
-        std::string exe = "./bdpt";
-        argv.push_back(&exe[0]);
-        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-        argv.push_back(nullptr);
-        dup2(pipeErr[1], 2);
-        close(pipeErr[0]);
-        int quiet = open("/dev/null", O_WRONLY);  // its summary line is not the test's output
-        if (quiet >= 0) dup2(quiet, 1);
-        execv(argv[0], argv.data());
-        _exit(127);
-    }
-    close(pipeErr[1]);
-    usleep(useconds_t(firstAfter * 1e6));
-    kill(pid, SIGINT);
-    if (secondAfter > 0) {
+template <class Ready>
+inline InterruptedRun interruptRun(const std::vector<std::string>& args, const std::string& name, const Ready& ready, double secondAfter) {
+    std::string command = "./bdpt";
+    for (const std::string& a : args) command += " '" + a + "'";
+    BackgroundRun run = startInBackground(command + " 2>build/tmp/" + name + ".err >/dev/null", "build/tmp/" + name + ".out");
+    const std::string errFile = "build/tmp/" + name + ".err";
+    bool readyCame = waitFor(ready);
+    kill(run.pid, SIGINT);
+    if (readyCame && secondAfter > 0) {
+        waitFor([&] { return readFile(errFile).find("bdpt: interrupted:") != std::string::npos; });
         usleep(useconds_t(secondAfter * 1e6));
-        kill(pid, SIGINT);
+        kill(run.pid, SIGINT);
     }
-    std::string err;
-    char buffer[512];
-    for (ssize_t n; (n = read(pipeErr[0], buffer, sizeof buffer)) > 0;) err.append(buffer, size_t(n));
-    close(pipeErr[0]);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, err};
+    int status = run.wait();
+    return {readyCame ? status : -2, readFile(errFile)};
 }
 
 // Power out / power in of the floor of scenes/energy-generator.scene, as light tracing sees it:

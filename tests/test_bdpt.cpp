@@ -162,8 +162,8 @@ static float mergeWeightInPath(const Scene& scene, Heuristic h, double mergeEta,
     RenderOptions opt;
     opt.heuristic = h;
     opt.maxDepth = 1000;
-    opt.strategyMaxLength = 64;
     RowOutput out;
+    out.strategyMaxLength = 64;
     mergeCameraVertices(scene, opt, vp, z, 0, out);
     Vec3 c(0), cw(0);
     for (const StrategySplat& sp : out.strategySplats)
