@@ -28,7 +28,7 @@ endif
 
 TEST_FILES := $(wildcard tests/test_*.cpp)
 # ./bdpt is the lecture's renderer (bdpt.cpp) with the classroom's tools (classroom/), one compile.
-RENDERER := bdpt.cpp classroom/classroom.cpp classroom/figures.h classroom/checks.h
+RENDERER := bdpt.cpp classroom/classroom.cpp $(wildcard classroom/*.h)
 TEST_HEADERS := tests/helpers.h tests/bench.h tests/densities.h
 
 all: bdpt
@@ -82,13 +82,13 @@ test:
 	@export TEST_START=$$(date +%s); $(MAKE) --no-print-directory -s $(TEST_PROGRAMS) && \
 	  tests/run_tests.sh build/all_tests build/native/test_bvh build/scalar/test_bvh
 
-# Speed against accuracy (gnuplot-nox), tests/charts.sh. Quick by default, into build/ only;
+# Speed against accuracy (gnuplot-nox), classroom/workshop/charts.sh. Quick by default, into build/ only;
 # FULL=1 gives the notes' budgets (still into build/). make figures is the one target that
 # rewrites the committed figures and tables of lecture_notes/ (NOTES=1); make refs rewrites the
 # committed references in scenes/refs/. make help lists them with their durations.
 refs: bdpt
 	@echo "make refs: rewrites scenes/refs/ (committed), 2 seeds x 90 s per scene (door-hidden 2 x 27 min): about 95 minutes"
-	+tests/charts.sh refs
+	+classroom/workshop/charts.sh refs
 
 # The tests' own references (committed), where no scene of scenes/refs/ fits: the room of
 # sds-ior1 without its balls (test_vcm) and cornell's direct light (test_sampler). About 3 minutes.
@@ -99,32 +99,32 @@ test-refs: bdpt
 	cp build/test-refs/sds-ior1-open.pfm build/test-refs/cornell-direct.pfm tests/refs/
 
 charts: bdpt
-	+tests/charts.sh charts
+	+classroom/workshop/charts.sh charts
 
-# Every figure of a class, for a projector, into build/class/ (tests/class.sh).
+# Every figure of a class, for a projector, into build/class/ (classroom/workshop/class.sh).
 class: bdpt
-	@tests/class.sh
+	@classroom/workshop/class.sh
 
 # The slides' six panels at 40 paths per pixel, for a class: build/panels/six-panels-40.png.
 panels: bdpt
 	@echo "make panels: six renders at 40 paths per pixel, about half a minute, into build/panels/"
-	+tests/charts.sh panels
+	+classroom/workshop/charts.sh panels
 
 efficiency: bdpt
-	+tests/charts.sh efficiency
+	+classroom/workshop/charts.sh efficiency
 
 # The Metropolis methods against bdpt where they should win (door-hidden) and lose (cornell), 8
 # seeds, at 64x64 with 1,024 and 128x128 with 256 mutations per pixel: build/metropolis.md
 # (NOTES=1: also Appendix A's tables).
 metropolis: bdpt
-	+tests/charts.sh metropolisTable
+	+classroom/workshop/charts.sh metropolisTable
 
 figures: bdpt build/estimators
 	@echo "make figures: rewrites lecture_notes/figures/ and the tables in the pages (committed): about 35 minutes"
-	+NOTES=1 tests/charts.sh charts
-	+NOTES=1 tests/charts.sh efficiency
-	+NOTES=1 tests/charts.sh figures
-	+NOTES=1 tests/charts.sh notes
+	+NOTES=1 classroom/workshop/charts.sh charts
+	+NOTES=1 classroom/workshop/charts.sh efficiency
+	+NOTES=1 classroom/workshop/charts.sh figures
+	+NOTES=1 classroom/workshop/charts.sh notes
 
 help:
 	@echo "make            build ./bdpt (seconds)"
@@ -155,7 +155,7 @@ help:
 WEB_FLAGS := -std=c++17 -O3 -msimd128 -msse -msse2 -fwasm-exceptions -DBDPT_STB_HEADER -I/usr/include/stb
 WEB_PAGE := $(addprefix build/web/,index.html app.js worker.js style.css)
 web: build/web/bdpt-web.js build/web/scenes.js $(WEB_PAGE)
-build/web/bdpt-web.js: classroom/web/bdpt-web.cpp bdpt.cpp classroom/figures.h $(wildcard scenes/*.scene scenes/refs/*.pfm)
+build/web/bdpt-web.js: classroom/web/bdpt-web.cpp bdpt.cpp $(wildcard classroom/*.h) $(wildcard scenes/*.scene scenes/refs/*.pfm)
 	@command -v em++ >/dev/null || { echo "make web needs Debian's emscripten: apt-get install emscripten"; exit 1; }
 	@mkdir -p build/web
 	NODE_PATH=/usr/share/nodejs em++ $(WEB_FLAGS) -o build/web/bdpt-web.tmp.js classroom/web/bdpt-web.cpp \
@@ -234,14 +234,14 @@ build/efficiency: tests/efficiency.cpp tests/bench.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
-# The densities of page 10's "Combination of Estimators: Example" (tests/estimators.cpp).
-build/estimators: tests/estimators.cpp tests/bench.h tests/densities.h $(RENDERER) build/flags
+# The densities of page 10's "Combination of Estimators: Example" (classroom/workshop/estimators.cpp).
+build/estimators: classroom/workshop/estimators.cpp tests/bench.h tests/densities.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
-# Uneven convergence (tests/uneven.cpp): bdpt, mlt, pssmlt and mmlt per region on the door scene at
+# Uneven convergence (classroom/workshop/uneven.cpp): bdpt, mlt, pssmlt and mmlt per region on the door scene at
 # equal time, into build/ (make figures puts its figure into the notes).
-build/uneven: tests/uneven.cpp tests/bench.h $(RENDERER) build/flags
+build/uneven: classroom/workshop/uneven.cpp tests/bench.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 uneven: build/uneven

@@ -1,7 +1,10 @@
 // classroom/checks.h: what the classroom's ./bdpt checks before it renders, so that a long render
 // never ends in "cannot write" or in a black image: outputs writable, memory enough, a scene's
-// path where it was probably meant, and mistakes in a scene that still renders. Part of
-// classroom/classroom.cpp.
+// path where it was probably meant, and mistakes in a scene that still renders.
+#pragma once
+#include "options.h"
+#include "run.h"
+#include <iomanip>
 
 // A scene path that does not exist, from the wrong folder or without its extension: the message
 // names the file probably meant.
@@ -169,10 +172,8 @@ inline void warnAboutScene(const Scene& scene, const RenderOptions& opt, std::os
                "facing away (a quad emits from its u x v side only), or shut in?\n";
 }
 
-// Before any work: every output writable, the memory there, the reference readable and of the
-// image's size. Returns the exit status if the render cannot go ahead, else 0.
 // A render of a million pixels or more says up front how long it will take: a 64x64 pass of the
-// same scene and options, timed, scaled by the pixels (the Metropolis methods' bootstrap apart).
+// same scene and options, its CPU time scaled by the pixels (the Metropolis methods' bootstrap apart).
 inline void warnAboutDuration(const ClassroomLine& cl, const Scene& scene, std::ostream& err) {
     const double pixels = double(scene.camera.width) * scene.camera.height;
     if (cl.quiet || pixels < 1e6 || isMetropolis(cl.opt.method)) return;
@@ -181,21 +182,16 @@ inline void warnAboutDuration(const ClassroomLine& cl, const Scene& scene, std::
     RenderOptions opt = cl.opt;
     opt.spp = 1;
     opt.seconds = 0;
-    auto t0 = std::chrono::steady_clock::now();
-    render(trial, opt);
-    const double pass = secondsSince(t0) * pixels / (64.0 * 64.0);
+    const double pass = render(trial, opt).cpuSeconds * pixels / (64.0 * 64.0);  // CPU seconds, as --time counts
     if (pass < 2) return;
-    auto duration = [](double s) {
-        char text[40];
-        std::snprintf(text, sizeof text, s < 120 ? "%.0f s" : s < 7200 ? "%.0f minutes" : "%.1f hours", s < 120 ? s : s < 7200 ? s / 60 : s / 3600);
-        return std::string(text);
-    };
     err << "bdpt: " << scene.camera.width << "x" << scene.camera.height << " pixels: a pass (one sample per pixel) takes about "
-        << duration(pass) << " here";
-    if (cl.opt.seconds <= 0) err << ", its " << cl.opt.spp << " passes about " << duration(pass * cl.opt.spp);
+        << duration(pass) << " of CPU time here";
+    if (cl.opt.seconds <= 0 && cl.opt.spp > 1) err << ", its " << cl.opt.spp << " passes about " << duration(pass * cl.opt.spp);
     err << " (from a 64x64 pass); Ctrl-C stops after the pass in flight\n";
 }
 
+// Before any work: every output writable, the memory there, the reference readable and of the
+// image's size. Returns the exit status if the render cannot go ahead, else 0.
 inline int checkBeforeRendering(const ClassroomLine& cl, const Scene& scene, const std::string& pfm, Image& ref, std::ostream& err) {
     std::string problem = checkOutputs(cl, pfm);
     if (!problem.empty()) {

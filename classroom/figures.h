@@ -1,6 +1,7 @@
 // classroom/figures.h: what the classroom's figures are made of: labels in a real typeface, the
-// error of an image against a reference, the false-colour ratio of two images, and bdpt's
-// per-strategy images laid out as the slides' pyramid. Part of classroom/classroom.cpp.
+// false-colour ratio of two images, and bdpt's per-strategy images laid out as the slides' pyramid.
+#pragma once
+#include "metrics.h"
 #ifdef BDPT_STB_HEADER
 #define STB_TRUETYPE_IMPLEMENTATION
 #include <stb_truetype.h>
@@ -92,101 +93,6 @@ inline void blitZoomed(std::vector<unsigned char>& canvas, int canvasW, const st
             std::copy_n(&rgb[3 * (size_t(y / zoom) * w + x / zoom)], 3, &canvas[3 * (size_t(y0 + y) * canvasW + x0 + x)]);
 }
 
-inline bool readPFM(const std::string& path, Image& img) {
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return false;
-    char magic[3] = {0};
-    int w = 0, h = 0;
-    float scale = 0;
-    bool ok = std::fscanf(f, "%2s %d %d %f", magic, &w, &h, &scale) == 4 && std::string(magic) == "PF" && w > 0 &&
-              h > 0 && w <= 16384 && h <= 16384 && scale < 0 && std::fgetc(f) != EOF;
-    if (ok) {
-        img = Image(w, h);
-        for (int y = h - 1; y >= 0 && ok; --y) ok = std::fread(&img.at(0, y), sizeof(Vec3), w, f) == size_t(w);
-    }
-    std::fclose(f);
-    return ok;
-}
-
-// Error against a reference image (speed against accuracy). RMSE over pixels and channels;
-// relMSE = mean (x - ref)^2 / (ref^2 + 0.01), as rendering papers report it; the relative bias of
-// the image mean; and a firefly measure: the 99.9th percentile of the per-pixel absolute error
-// over its median (large where a few pixels carry huge errors).
-struct ErrorMetrics {
-    double rmse = 0, relMse = 0, mean = 0, firefly = 0;
-    double bias = 0;             // of the image mean, the lamp's pixels left out
-    double rmseWithoutLamp = 0;  // rmse over the pixels that are not the lamp's (lampPixels)
-};
-
-// A lamp seen directly: a pixel within one pixel of a reference value above 5. Its edge pixels
-// are part lamp (Le = 17 in the Cornell boxes) and part ceiling, and a camera sample's jitter lands
-// on one or the other: that noise is the pixel filter's, the same for every camera-path method,
-// and on the Cornell boxes it is most of their MSE, hiding the transport's error (light tracing
-// splats many lamp points into each such pixel per pass and does not show it). make efficiency
-// and the charts' curves leave these pixels out.
-inline bool nearLamp(const Image& ref, int x, int y) {
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            int u = x + dx, v = y + dy;
-            if (u >= 0 && v >= 0 && u < ref.width && v < ref.height && maxComponent(ref.at(u, v)) > 5) return true;
-        }
-    return false;
-}
-
-// The lamp's pixels: nearLamp's, and a point light's own pixel and its neighbours. A point light
-// has no area, so no camera path meets it and a reference made by one shows nothing there, while
-// light tracing splats the light's whole direct view into that one pixel: a difference of the
-// pixel, not of the transport (on cornell-point it was +89% of lt's image mean).
-inline std::vector<char> lampPixels(const Image& ref, const Scene* scene) {
-    std::vector<char> lamp(ref.pixels.size(), 0);
-    for (int y = 0; y < ref.height; ++y)
-        for (int x = 0; x < ref.width; ++x) lamp[size_t(y) * ref.width + x] = nearLamp(ref, x, y);
-    for (const Light& light : scene ? scene->lights : std::vector<Light>{}) {
-        float fx, fy;
-        if (light.type != Light::Point || !projectToFilm(scene->camera, light.position, fx, fy) || scene->camera.width != ref.width) continue;
-        for (int y = int(fy) - 1; y <= int(fy) + 1; ++y)
-            for (int x = int(fx) - 1; x <= int(fx) + 1; ++x)
-                if (x >= 0 && y >= 0 && x < ref.width && y < ref.height) lamp[size_t(y) * ref.width + x] = 1;
-    }
-    return lamp;
-}
-
-// With the scene, a point light's pixels are the lamp's too (lampPixels). The bias leaves the
-// lamp's pixels out, as rmseWithoutLamp does.
-inline ErrorMetrics compareToReference(const Image& img, const Image& ref, const Scene* scene = nullptr) {
-    ErrorMetrics m;
-    std::vector<double> pixelError(img.pixels.size());
-    const std::vector<char> lampMask = lampPixels(ref, scene);
-    double sum = 0, lampless = 0, lamplessSum = 0, lamplessRefSum = 0;
-    long lamplessValues = 0;
-    for (size_t i = 0; i < img.pixels.size(); ++i) {
-        bool lamp = ref.width > 0 && lampMask[i];
-        for (int c = 0; c < 3; ++c) {
-            double x = img.pixels[i][c], r = ref.pixels[i][c], e = x - r;
-            m.rmse += e * e;
-            if (!lamp) lampless += e * e, ++lamplessValues, lamplessSum += x, lamplessRefSum += r;
-            m.relMse += e * e / (r * r + 0.01);
-            sum += x;
-        }
-        pixelError[i] = std::fabs(double(average(img.pixels[i])) - average(ref.pixels[i]));
-    }
-    double n = 3.0 * img.pixels.size();
-    m.rmse = std::sqrt(m.rmse / n);
-    m.rmseWithoutLamp = std::sqrt(lampless / std::max(1L, lamplessValues));
-    m.relMse /= n;
-    m.mean = sum / n;
-    m.bias = lamplessRefSum > 0 ? (lamplessSum - lamplessRefSum) / lamplessRefSum : 0;
-    auto quantile = [&](double q) {
-        size_t k = std::min(pixelError.size() - 1, size_t(q * (pixelError.size() - 1) + 0.5));
-        std::nth_element(pixelError.begin(), pixelError.begin() + k, pixelError.end());
-        return pixelError[k];
-    };
-    double median = quantile(0.5), p999 = quantile(0.999);
-    m.firefly = p999 / std::max(median, 1e-12);
-    return m;
-}
-
-
 // Where two methods differ: the ratio A/B of the two images' means over blocks of block x block
 // pixels (the blocks average the noise away), as a false-colour image that is white where A = B,
 // redder where A is brighter and bluer where darker, saturating at one stop; dark grey where
@@ -243,11 +149,6 @@ inline std::vector<unsigned char> ratioFigure(const Image& ratio, const std::str
     return canvas;
 }
 
-inline std::string fileStem(const std::string& path) {  // "build/notes/pool-lt.pfm" -> "pool-lt"
-    std::string name = replaceExtension(path, "");
-    size_t slash = name.find_last_of('/');
-    return slash == std::string::npos ? name : name.substr(slash + 1);
-}
 // The two files of a ratio as its title names them: their stems, or where the stems are the same
 // (two folders of strategy images) their folders' names too: "bdpt/s4_t1_weighted".
 inline std::string ratioTitle(const std::string& a, const std::string& b) {

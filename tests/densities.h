@@ -3,7 +3,7 @@
 //   p_0 = p_cam(x_1) q(x_1) p_bsdf(x_1 -> x_0)   (the camera samples x_1, then hits the lamp)
 //   p_1 = p_cam(x_1) p_light(x_0)                (next event)
 //   p_2 = p_light(x_0) p_emit(x_0 -> x_1)        (light tracing)
-// each an area density. Shared by tests/estimators.cpp (page 10's figure) and test_notes; the
+// each an area density. Shared by classroom/workshop/estimators.cpp (page 10's figure) and test_notes; the
 // file that includes it has included bdpt.cpp.
 #pragma once
 

@@ -463,14 +463,28 @@ TEST_CASE("--side-by-side: an entry's own scene") {
 // A render of millions of pixels says up front how long it will take, before its first pass of
 // many seconds (estimated from a 64x64 pass of the same scene and options): the first hour's
 // --res 8000x8000 ran twenty minutes without a word. Killed once it has said it, one thread.
-TEST_CASE("a render of millions of pixels says how long it will take before it starts") {
+TEST_CASE("a render of millions of pixels says how long it will take before it starts, and the estimate holds") {
     std::remove("build/tmp/fh_big.png");
-    BackgroundRun run = startInBackground("./bdpt scenes/cornell.scene --res 2000x2000 --spp 4 --threads 1 --out build/tmp/fh_big.png",
+    BackgroundRun big = startInBackground("./bdpt scenes/cornell.scene --res 1500x1500 --spp 4 --threads 1 --out build/tmp/fh_big.png",
                                           "build/tmp/fh_big.txt");
-    CHECK(waitFor([&] { return run.output().find("passes about ") != std::string::npos; }));
-    CHECK(run.stop(SIGKILL) != 0);  // killed in its first pass
-    const std::string text = run.output();
-    CHECK(text.find("bdpt: 2000x2000 pixels: a pass (one sample per pixel) takes about ") != std::string::npos);
-    CHECK(text.find("its 4 passes about ") != std::string::npos);
+    CHECK(waitFor([&] { return big.output().find("passes about ") != std::string::npos; }));
+    CHECK(big.stop(SIGKILL) != 0);  // killed in its first pass
+    const std::string text = big.output();
+    const std::string pass = "bdpt: 1500x1500 pixels: a pass (one sample per pixel) takes about ", passes = "its 4 passes about ";
+    REQUIRE(text.find(pass) != std::string::npos);
+    REQUIRE(text.find(passes) != std::string::npos);
     CHECK(!fileExists("build/tmp/fh_big.png"));
+    // The numbers, against what they estimate: four passes are four times one (each printed to
+    // 0.1 s), and one pass, rendered, costs within a factor of 2 of the estimate (CPU seconds).
+    const double onePass = std::atof(text.c_str() + text.find(pass) + pass.size());
+    const double fourPasses = std::atof(text.c_str() + text.find(passes) + passes.size());
+    CHECK(fourPasses == doctest::Approx(4 * onePass).epsilon(0.05));
+    Run measured = run({"scenes/cornell.scene", "--res", "1500x1500", "--spp", "1", "--out", "build/tmp/fh_big.png"});
+    REQUIRE(measured.status == 0);
+    const size_t at = measured.out.find(" s (");
+    REQUIRE(at != std::string::npos);
+    const double cpu = std::atof(measured.out.c_str() + at + 4);
+    MESSAGE("a 1500x1500 pass: estimated " << onePass << " CPU s, took " << cpu);
+    CHECK(onePass > 0.5 * cpu);
+    CHECK(onePass < 2 * cpu);
 }

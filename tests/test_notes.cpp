@@ -69,9 +69,37 @@ static void checkQuotesStand(const std::vector<Quote>& quotes) {
     }
 }
 
-// The renderer's source: the lecture's file and the classroom's, which the notes cite too.
+// The renderer's source: the lecture's file and the classroom's rooms, which the notes cite too.
+static const std::vector<std::string> kRendererFiles = {"bdpt.cpp", "classroom/classroom.cpp", "classroom/profile.h", "classroom/lecture.h",
+                                                        "classroom/options.h", "classroom/run.h", "classroom/checks.h", "classroom/metrics.h",
+                                                        "classroom/figures.h", "classroom/side_by_side.h"};
 static std::string rendererSource() {
-    return slurp("bdpt.cpp") + slurp("classroom/classroom.cpp") + slurp("classroom/figures.h") + slurp("classroom/checks.h");
+    std::string all;
+    for (const std::string& f : kRendererFiles) all += slurp(f);
+    return all;
+}
+
+// Where a page says a name of the renderer lives ("`nearLamp()` in `classroom/metrics.h`"), that
+// file defines it: a function, a struct, or a shell function of a workshop script.
+TEST_CASE("the notes' 'NAME in FILE' citations name the file that defines NAME") {
+    std::regex cited("`([A-Za-z_][A-Za-z0-9_]*)(?:\\(\\))?` in `(bdpt\\.cpp|classroom/[A-Za-z_/.]+\\.(?:cpp|h|sh|py))`");
+    int checked = 0;
+    std::vector<std::string> pages = notePages();
+    pages.push_back("README.md");
+    for (const std::string& page : pages) {
+        std::string text = slurp(page);
+        for (std::sregex_iterator it(text.begin(), text.end(), cited), end; it != end; ++it) {
+            const std::string name = (*it)[1], file = (*it)[2], source = slurp(file);
+            std::regex definition("(\\n(inline|static|struct|template)[^\\n(]*\\b" + name + "\\b)|(\\n" + name + "\\(\\) *\\{)|(\\ndef " + name + "\\()");
+            CAPTURE(page);
+            CAPTURE(name);
+            CAPTURE(file);
+            CHECK(!source.empty());
+            CHECK(std::regex_search(source, definition));
+            ++checked;
+        }
+    }
+    CHECK(checked >= 5);
 }
 
 TEST_CASE("the notes cite only functions that bdpt.cpp or classroom/ defines") {
@@ -388,7 +416,7 @@ TEST_CASE("notes, pages 4 and 9: the furnace's partial sums, and roulette's q = 
 }
 
 // The pages that speak of vertices and strategies show a path with its vertices labelled as the
-// slides label them (tests/diagrams.py draws them): bdpt's idea, the densities, the path
+// slides label them (classroom/workshop/diagrams.py draws them): bdpt's idea, the densities, the path
 // formulation, the combination of strategies, merging and Metropolis.
 TEST_CASE("the pages on paths and strategies each show a path diagram") {
     int pages = 0;
@@ -436,7 +464,7 @@ TEST_CASE("every make target and every figure the notes mention exists, each ima
 }
 
 TEST_CASE("every method has its own line style, the same in every chart; a chart has at most six, each its own colour") {
-    std::system("bash tests/charts.sh styles > build/tmp/styles.txt");
+    std::system("bash classroom/workshop/charts.sh styles > build/tmp/styles.txt");
     std::istringstream in(slurp("build/tmp/styles.txt"));
     std::set<std::string> styles, labels, charted;
     std::map<std::string, std::string> colourOf;
@@ -805,7 +833,7 @@ static std::vector<Quote> failureQuotes() {
     return quotes;
 }
 
-// Page 10's four paths: the numbers its text quotes are the densities' (tests/estimators.cpp).
+// Page 10's four paths: the numbers its text quotes are the densities' (classroom/workshop/estimators.cpp).
 static std::vector<Quote> estimatorQuotes() {
     // The paths of the figure: lamp centre -> the point seen in row R of the middle column -> eye.
     Scene scene = loadScene("scenes/cornell.scene");
@@ -1003,7 +1031,7 @@ TEST_CASE("the numbers the pages quote from the tests' measurements are what the
     checkQuotesStand(measuredQuotes());
 }
 
-TEST_CASE("page 10's four paths: the numbers its text quotes are the densities' (tests/estimators.cpp)") {
+TEST_CASE("page 10's four paths: the numbers its text quotes are the densities' (classroom/workshop/estimators.cpp)") {
     checkQuotesStand(estimatorQuotes());
 }
 

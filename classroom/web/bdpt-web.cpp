@@ -3,9 +3,8 @@
 // thread: the same Rendering as ./bdpt, so a panel's image is ./bdpt's for the same options and
 // seed, bit for bit. The page calls the functions below through cwrap; strings come back as
 // pointers to a buffer that the next call overwrites.
-#define BDPT_NO_MAIN
-#include "../../bdpt.cpp"
-#include "../figures.h"  // readPFM, compareToReference: the error as the charts measure it
+#include "../lecture.h"
+#include "../metrics.h"  // readPFM, compareToReference: the error as the charts measure it
 #include <emscripten/emscripten.h>
 
 // One panel: its scene (the Rendering refers to it), its options, its reference if there is one.

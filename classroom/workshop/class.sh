@@ -12,7 +12,7 @@
 # About 4 minutes on a 2-core machine (CLASS_SECONDS=S, default 20, sets the equal-time runs: CPU
 # seconds per method).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 command -v gnuplot >/dev/null || { echo "make class: needs gnuplot, which is not installed (apt-get install gnuplot-nox); nothing done" >&2; exit 1; }
 OUT=build/class
 T=${CLASS_SECONDS:-20}
@@ -61,13 +61,13 @@ mistake fixed-start scenes/door.scene pssmlt 2 --fixed-start "every Metropolis c
 
 # Error against time: each method for the same time on one thread, the RMSE of every pass against
 # the scene's reference; two runs at a time. The methods are make charts' (their options and
-# their chart styles, one colour each, from tests/charts.sh).
-chart() {  # scene title label...   (labels as tests/charts.sh methods names them)
+# their chart styles, one colour each, from classroom/workshop/charts.sh).
+chart() {  # scene title label...   (labels as classroom/workshop/charts.sh methods names them)
   local scene=$1 title=$2 plot="" i=0
   shift 2
   for label in "$@"; do
     local opts
-    opts=$(tests/charts.sh methods "$scene" | sed -n "s/^$label|//p")
+    opts=$(classroom/workshop/charts.sh methods "$scene" | sed -n "s/^$label|//p")
     # shellcheck disable=SC2086
     ./bdpt "scenes/$scene.scene" $opts --res 64x64 --time "$((T / 4))" --threads 1 --quiet --ref "scenes/refs/$scene.pfm" \
       --log "$OUT/work/$scene-$label.csv" --out "$OUT/work/$scene-$label.png" &
@@ -77,8 +77,8 @@ chart() {  # scene title label...   (labels as tests/charts.sh methods names the
   # the keys as make charts writes them: a flat curve under another says so, a stub is left out
   while IFS='|' read -r label key; do
     [ -n "$key" ] || { echo "    $scene: $label left out: fewer than 3 passes in $((T / 4)) s (CLASS_SECONDS=$((T * 2)) gives it more)"; continue; }
-    plot="$plot${plot:+, }'$OUT/work/$scene-$label.csv' using 6:13 with lines lw 4 $(tests/charts.sh lineStyle "$label") title '$key'"
-  done < <(tests/charts.sh curveKeys "$OUT/work/$scene" "$@")
+    plot="$plot${plot:+, }'$OUT/work/$scene-$label.csv' using 6:13 with lines lw 4 $(classroom/workshop/charts.sh lineStyle "$label") title '$key'"
+  done < <(classroom/workshop/charts.sh curveKeys "$OUT/work/$scene" "$@")
   gnuplot <<GP
 set terminal pngcairo size 1920,1080 font "DejaVu Sans,30"
 set output "$OUT/error-vs-time-$scene.png"

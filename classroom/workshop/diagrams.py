@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 # The lecture notes' path diagrams (lecture_notes/figures/path-*.svg), drawn as the slides label
 # paths: x_0 on the light .. x_k at the pinhole, s vertices from the light (orange), t from the
-# camera (blue), k = s + t - 1 segments. Plain SVG, no dependency: python3 tests/diagrams.py
+# camera (blue), k = s + t - 1 segments. Plain SVG, no dependency: python3 classroom/workshop/diagrams.py
 # rewrites them (the committed files are its output).
 import os
 
-OUT = os.path.join(os.path.dirname(__file__), "..", "lecture_notes", "figures")
+OUT = os.path.join(os.path.dirname(__file__), "..", "..", "lecture_notes", "figures")
 LIGHT, CAMERA, GREY, INK = "#d55e00", "#0072b2", "#999999", "#000000"
 
 

@@ -1,19 +1,19 @@
 #!/usr/bin/env bash
 # Speed against accuracy. Usage:
-#   tests/charts.sh refs      references of every scene (once; kept in scenes/refs/, reused)
-#   tests/charts.sh charts    every method for the same time on every scene: error-vs-time charts,
+#   classroom/workshop/charts.sh refs      references of every scene (once; kept in scenes/refs/, reused)
+#   classroom/workshop/charts.sh charts    every method for the same time on every scene: error-vs-time charts,
 #                             the failure table and the reference check
-#   tests/charts.sh efficiency  make efficiency: error at equal samples and 1/(MSE x CPU-s)
-#   tests/charts.sh metropolisTable  make metropolis: the Markov chains against bdpt over 8 seeds
-#   tests/charts.sh panels    the six panels at 40 paths per pixel into build/panels/ (make panels)
-#   tests/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time,
+#   classroom/workshop/charts.sh efficiency  make efficiency: error at equal samples and 1/(MSE x CPU-s)
+#   classroom/workshop/charts.sh metropolisTable  make metropolis: the Markov chains against bdpt over 8 seeds
+#   classroom/workshop/charts.sh panels    the six panels at 40 paths per pixel into build/panels/ (make panels)
+#   classroom/workshop/charts.sh figures   the slides' six panels (a)-(f) at 40 paths per pixel and at equal time,
 #                             the thin-gap figure, the combination-of-estimators example, the
 #                             furnace's series and the door's uneven convergence (metropolis)
-#   tests/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
-#   tests/charts.sh plots     the charts again from the logs of the last charts run (no rendering)
-#   tests/charts.sh tables    the failure table and the reference check from the runs' logs
-#   tests/charts.sh refcheck  the references' noise against the charted errors (also run by charts)
-#   tests/charts.sh samplers  --sampler sobol against random: pt, nee --mis, bdpt on cornell and
+#   classroom/workshop/charts.sh notes     every figure of lecture_notes/, by the commands the pages show
+#   classroom/workshop/charts.sh plots     the charts again from the logs of the last charts run (no rendering)
+#   classroom/workshop/charts.sh tables    the failure table and the reference check from the runs' logs
+#   classroom/workshop/charts.sh refcheck  the references' noise against the charted errors (also run by charts)
+#   classroom/workshop/charts.sh samplers  --sampler sobol against random: pt, nee --mis, bdpt on cornell and
 #                             on its direct light alone (also run by charts)
 # Where results go: into build/charts/ (a student's run never changes a committed file), unless
 # NOTES=1 (make figures), which writes the committed figures and tables of lecture_notes/ and
@@ -21,7 +21,7 @@
 # 64 samples and 2 seeds); FULL=1 (implied by NOTES=1) gives the notes' 4 s, 256 samples, 4 seeds.
 # SCENES="a b" limits refs and charts to some scenes (the tables always cover all of them).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 NOTES=${NOTES:-}
 FULL=${FULL:-$NOTES}
 RES=${RES:-64x64}                 # chart resolution (the references are made at it too)
@@ -38,7 +38,7 @@ mkdir -p "$FIG" "$LOGS/refs" scenes/refs
 # gnuplot draws every chart and figure: missing, say so before any work (Debian: gnuplot-nox).
 case "${1:-charts}" in
   charts|panels|figures|plots|notes|estimators|furnaceseries|thingap|samplers)
-    command -v gnuplot >/dev/null || { echo "tests/charts.sh ${1:-charts}: needs gnuplot, which is not installed (apt-get install gnuplot-nox); nothing done" >&2; exit 1; } ;;
+    command -v gnuplot >/dev/null || { echo "classroom/workshop/charts.sh ${1:-charts}: needs gnuplot, which is not installed (apt-get install gnuplot-nox); nothing done" >&2; exit 1; } ;;
 esac
 
 # splice TABLE PAGE MARKER: the table replaces what stands between <!-- MARKER:start --> and
@@ -437,7 +437,7 @@ panels() {
 }
 
 figures() {
-  [ -n "$NOTES" ] && python3 tests/diagrams.py  # the pages' path diagrams (figures/path-*.svg)
+  [ -n "$NOTES" ] && python3 classroom/workshop/diagrams.py  # the pages' path diagrams (figures/path-*.svg)
   thingap
   estimators
   furnaceseries
@@ -445,7 +445,7 @@ figures() {
 }
 
 # Page 16's uneven convergence: bdpt, mlt, pssmlt and mmlt on the door at equal time, per region
-# (tests/uneven.cpp): its figure into $FIG, its table spliced into the page.
+# (classroom/workshop/uneven.cpp): its figure into $FIG, its table spliced into the page.
 metropolis() {
   make -s build/uneven
   ./build/uneven --out "$FIG" | sed -n '/^|/p' > "$FIG/uneven-door.md"
