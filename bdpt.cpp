@@ -3007,6 +3007,30 @@ inline RenderResult render(const Scene& scene, const RenderOptions& opt) {
     return r.finish();
 }
 
+// The folder a file goes into, made if missing (mkdir -p): false if some part of it cannot be.
+inline std::string folderOf(const std::string& path) {
+    size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+}
+inline bool makeFolders(const std::string& path) {
+    for (size_t i = 1; i <= path.size(); ++i) {
+        if (i < path.size() && path[i] != '/') continue;
+        std::string part = path.substr(0, i);
+        struct stat st;
+        if (stat(part.c_str(), &st) == 0 ? !S_ISDIR(st.st_mode) : mkdir(part.c_str(), 0777) != 0) return false;
+    }
+    return true;
+}
+// Why a folder cannot be made: the first part of it that is a file, or the system's reason.
+inline std::string folderProblem(const std::string& path) {
+    for (size_t i = 1; i <= path.size(); ++i) {
+        if (i < path.size() && path[i] != '/') continue;
+        struct stat st;
+        if (stat(path.substr(0, i).c_str(), &st) == 0 && !S_ISDIR(st.st_mode)) return path.substr(0, i) + " is a file";
+    }
+    return std::strerror(errno);
+}
+
 // Files appear whole or not at all: written under a temporary name, then renamed.
 inline std::string tempName(const std::string& path) { return path + ".tmp" + std::to_string(getpid()); }
 inline bool commitFile(const std::string& tmp, const std::string& path, bool ok) {
@@ -3119,10 +3143,14 @@ inline size_t editDistance(const std::string& a, const std::string& b) {
 }
 // The known word closest to a misspelt one, if within a quarter of its letters or two; else "".
 inline std::string closestWord(const std::string& word, const std::vector<std::string>& known) {
+    auto lower = [](std::string s) {
+        for (char& c : s) c = char(std::tolower((unsigned char)c));
+        return s;
+    };
     std::string best;
     size_t bestDistance = std::max<size_t>(2, word.size() / 4) + 1;
-    for (const std::string& k : known)
-        if (size_t d = editDistance(word, k); d < bestDistance) best = k, bestDistance = d;
+    for (const std::string& k : known)  // BDPT is bdpt: capitals cost nothing
+        if (size_t d = editDistance(lower(word), lower(k)); d < bestDistance) best = k, bestDistance = d;
     return best;
 }
 
@@ -3595,7 +3623,11 @@ std::string usage(const std::vector<OptionRow<Line>>& table) {
     return text;
 }
 
-// A command line's words, each an option, a value or the scene; suggest() names a misspelt one's (classroom/).
+// The options ./bdpt adds (classroom/): the lecture's program names the program that has them.
+constexpr const char* kClassroomOptions[] = {"--side-by-side", "--title", "--ratio-panel", "--live", "--log", "--ref", "--compare",
+                                             "--average", "--ratio", "--failure-table", "--profile", "--overwrite"};
+// A command line's words, each an option, a value or the scene; a misspelt option gets the closest
+// of the table's (or suggest()'s, the classroom's, which knows other programs' names too).
 template <class Line>
 Line parseOptions(const std::vector<std::string>& args, const std::vector<OptionRow<Line>>& table,
                   std::string (*suggest)(const std::string&) = nullptr) {
@@ -3612,7 +3644,12 @@ Line parseOptions(const std::vector<std::string>& args, const std::vector<Option
             size_t equals = a.find('=');
             if (equals != std::string::npos)
                 in.fail("unknown option '" + printable(a) + "' (write '" + printable(a.substr(0, equals)) + " " + printable(a.substr(equals + 1)) + "')");
-            std::string near = suggest ? suggest(a) : "";
+            if (std::count(std::begin(kClassroomOptions), std::end(kClassroomOptions), a))
+                in.fail(printable(a) + " is an option of ./bdpt, the classroom's program (make builds it), not of bdpt.cpp alone");
+            std::vector<std::string> names;
+            for (const OptionRow<Line>& o : table)
+                if (o.name) names.push_back(o.name);
+            std::string near = suggest ? suggest(a) : closestWord(a, names);
             in.fail("unknown option '" + printable(a) + "'" + (near.empty() ? "" : " (did you mean " + near + "?)"));
         } else if (cl.scenePath.empty()) {
             cl.scenePath = a;
@@ -3726,8 +3763,8 @@ inline int runLecture(const std::vector<std::string>& args, std::ostream& out, s
     }
     RenderResult r = render(scene, cl.opt);
     const std::string pfm = replaceExtension(cl.out, ".pfm");
-    if (!writePNG(r.image, cl.out, cl.exposure) || !writePFM(r.image, pfm) ||
-        (!cl.strategiesDir.empty() && (mkdir(cl.strategiesDir.c_str(), 0777), !writeStrategyImages(r, cl.strategyLength, cl.strategiesDir, cl.exposure)))) {
+    if (!makeFolders(folderOf(cl.out)) || !writePNG(r.image, cl.out, cl.exposure) || !writePFM(r.image, pfm) ||
+        (!cl.strategiesDir.empty() && (!makeFolders(cl.strategiesDir) || !writeStrategyImages(r, cl.strategyLength, cl.strategiesDir, cl.exposure)))) {
         err << "bdpt: cannot write " << cl.out << ", " << pfm << " or the strategy images\n";
         return 1;
     }

@@ -26,8 +26,7 @@ inline Scene loadSceneOrGuess(const std::string& path) {
 inline std::string unwritable(const std::string& path) {
     struct stat st;
     if (stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return "it is a folder";
-    size_t slash = path.find_last_of('/');
-    std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    const std::string dir = folderOf(path);
     if (stat(dir.c_str(), &st) != 0) return "the folder " + dir + " does not exist";
     if (!S_ISDIR(st.st_mode)) return dir + " is not a folder";
     if (access(dir.c_str(), W_OK) != 0) return "no permission to write in " + dir;
@@ -47,16 +46,6 @@ inline bool sameFile(const std::string& a, const std::string& b) {
     return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
-// mkdir -p; false if some part cannot be made.
-inline bool makeFolders(const std::string& path) {
-    for (size_t i = 1; i <= path.size(); ++i) {
-        if (i < path.size() && path[i] != '/') continue;
-        std::string part = path.substr(0, i);
-        struct stat st;
-        if (stat(part.c_str(), &st) == 0 ? !S_ISDIR(st.st_mode) : mkdir(part.c_str(), 0777) != 0) return false;
-    }
-    return true;
-}
 
 // A file the project ships, which a careless --out would lose: an existing file under a folder
 // scenes/ or lecture_notes/ (a scene's reference, a figure of the notes).
@@ -67,11 +56,13 @@ inline bool shippedFile(const std::string& path) {
     return p.find("/scenes/") != std::string::npos || p.find("/lecture_notes/") != std::string::npos;
 }
 
-// Every file the render will write, checked (and --strategies DIR made) before it starts.
+// Every file the render will write, checked before it starts; a missing folder is made, for --out,
+// --log and --strategies alike (a page's command into build/notes/ works from a fresh clone).
 inline std::string checkOutputs(const ClassroomLine& cl, const std::string& pfm) {
     std::vector<std::string> files = {cl.out, pfm};
     if (!cl.logPath.empty()) files.push_back(cl.logPath);
     for (const std::string& f : files) {
+        if (!makeFolders(folderOf(f))) return "cannot write " + f + ": the folder " + folderOf(f) + " cannot be made (" + folderProblem(folderOf(f)) + ")";
         if (sameFile(f, cl.scenePath) || (!cl.refPath.empty() && sameFile(f, cl.refPath)))
             return "will not write " + f + ": it is an input of this run";
         if (!cl.overwrite && shippedFile(f))
@@ -80,7 +71,8 @@ inline std::string checkOutputs(const ClassroomLine& cl, const std::string& pfm)
         if (!why.empty()) return "cannot write " + f + ": " + why;
     }
     if (!cl.strategiesDir.empty()) {
-        if (!makeFolders(cl.strategiesDir)) return "cannot make the folder " + cl.strategiesDir + " for the strategy images";
+        if (!makeFolders(cl.strategiesDir))
+            return "cannot write into " + cl.strategiesDir + ": the folder cannot be made (" + folderProblem(cl.strategiesDir) + ")";
         std::string why = unwritable(cl.strategiesDir + "/x.png");
         if (!why.empty()) return "cannot write into " + cl.strategiesDir + ": " + why;
     }

@@ -18,12 +18,16 @@ static bool contains(const std::string& text, const std::string& part) { return 
 
 TEST_CASE("output paths are checked before rendering: the path and the reason, status 1, nothing rendered") {
     const double cpu0 = cpuSecondsWithChildren();
-    Run r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "/nonexistent/dir/x.png"});
+    // A missing folder is made (a page's command into build/notes/ from a fresh clone); one that
+    // cannot be, because part of its path is a file, is named.
+    writeTempFile("fh_a_file", "not a folder");
+    Run r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp/fh_a_file/dir/x.png"});
     CHECK(r.status == 1);
-    CHECK(r.err == "bdpt: cannot write /nonexistent/dir/x.png: the folder /nonexistent/dir does not exist (nothing rendered)\n");
-    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp/fh.png", "--log", "/nonexistent/log.csv"});
+    CHECK(r.err == "bdpt: cannot write build/tmp/fh_a_file/dir/x.png: the folder build/tmp/fh_a_file/dir cannot be made "
+                   "(build/tmp/fh_a_file is a file) (nothing rendered)\n");
+    r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp/fh.png", "--log", "build/tmp/fh_a_file/log.csv"});
     CHECK(r.status == 1);
-    CHECK(contains(r.err, "cannot write /nonexistent/log.csv: the folder /nonexistent does not exist"));
+    CHECK(contains(r.err, "cannot write build/tmp/fh_a_file/log.csv: the folder build/tmp/fh_a_file cannot be made (build/tmp/fh_a_file is a file)"));
     CHECK(!fileExists("build/tmp/fh.png"));  // a bad --log no longer costs the image: nothing is done at all
     r = run({"scenes/cornell.scene", "--spp", "100000", "--out", "build/tmp/fh.png", "--log", "build"});
     CHECK(r.status == 2);  // not a .csv name
@@ -95,7 +99,7 @@ TEST_CASE("--out takes a .png name only, and no run writes over one of its input
     CHECK(run({"scenes/furnace.scene", "--spp", "1", "--res", "8x8", "--quiet", "--out", "build/tmp/fh2.PNG"}).status == 0);
 }
 
-TEST_CASE("--strategies DIR is created, with its parents") {
+TEST_CASE("--out's, --log's and --strategies' folders are made alike, with their parents, by both programs") {
     std::system("rm -rf build/tmp/fh_strategies");
     Run r = run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--strategy-length", "2", "--strategies",
                  "build/tmp/fh_strategies/a/b", "--out", "build/tmp/fh3.png", "--quiet"});
@@ -105,7 +109,17 @@ TEST_CASE("--strategies DIR is created, with its parents") {
     std::ofstream("build/tmp/fh_file") << "x";
     r = run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--strategies", "build/tmp/fh_file/sub", "--out", "build/tmp/fh3.png"});
     CHECK(r.status == 1);
-    CHECK(contains(r.err, "cannot make the folder build/tmp/fh_file/sub"));
+    CHECK(contains(r.err, "cannot write into build/tmp/fh_file/sub: the folder cannot be made (build/tmp/fh_file is a file)"));
+    // --out and --log into missing folders, in ./bdpt and in the lecture's program alike.
+    std::system("rm -rf build/tmp/fh_made");
+    r = run({"scenes/cornell.scene", "--res", "8x8", "--spp", "1", "--log", "build/tmp/fh_made/log/a.csv", "--out", "build/tmp/fh_made/out/a.png", "--quiet"});
+    CHECK(r.status == 0);
+    CHECK(fileExists("build/tmp/fh_made/out/a.png"));
+    CHECK(fileExists("build/tmp/fh_made/log/a.csv"));
+    CHECK(std::system("build/bdpt-lecture scenes/cornell.scene --res 8x8 --spp 1 --quiet --strategy-length 2 --strategies build/tmp/fh_made/lean/s "
+                      "--out build/tmp/fh_made/lean/out/a.png") == 0);
+    CHECK(fileExists("build/tmp/fh_made/lean/out/a.pfm"));
+    CHECK(fileExists("build/tmp/fh_made/lean/s/s1_t2_weighted.pfm"));
 }
 
 TEST_CASE("options that the method would ignore are refused, naming the method they belong to") {
@@ -262,6 +276,30 @@ TEST_CASE("did you mean: a misspelt option, material or scene path gets the like
     std::string scene = writeTempFile("typo.scene", "camera 0 1 -4 0 1 0 0 1 0 40 8 8\nmaterial white diffuse 0.5 0.5 0.5\n"
                                                      "quad 0 0 0 1 0 0 0 0 1 whte emit 1 1 1\n");
     CHECK(run({scene}).err == scene + ":3: unknown material 'whte' (did you mean 'white'?)\n");
+    // Two edits away (two letters dropped, a transposition), and capitals: still found.
+    CHECK(contains(run({"scenes/furnace.scene", "--heurstc", "max"}).err, "unknown option '--heurstc' (did you mean --heuristic?)"));
+    CHECK(contains(run({"scenes/furnace.scene", "--bootsrtap", "9"}).err, "unknown option '--bootsrtap' (did you mean --bootstrap?)"));
+    CHECK(contains(run({"scenes/furnace.scene", "--method", "BDPT"}).err, "unknown method 'BDPT' (did you mean bdpt?"));
+    CHECK(contains(run({"scenes/furnace.scene", "--Spp", "4"}).err, "unknown option '--Spp' (did you mean --spp?)"));
+    // The lecture's own program: the same guesses, and the classroom's options named as ./bdpt's.
+    auto lecture = [](const std::string& options) {
+        std::system(("build/bdpt-lecture scenes/furnace.scene " + options + " 2> build/tmp/fh_lecture.err").c_str());
+        return readFile("build/tmp/fh_lecture.err");
+    };
+    CHECK(contains(lecture("--heurstc max"), "unknown option '--heurstc' (did you mean --heuristic?)"));
+    CHECK(contains(lecture("--side-by-side pt,nee"), "--side-by-side is an option of ./bdpt, the classroom's program"));
+    CHECK(contains(lecture("--ref x.pfm"), "--ref is an option of ./bdpt"));  // not "did you mean --res"
+}
+
+// The lecture's list of the classroom's options is the classroom's: the rows ./bdpt adds.
+TEST_CASE("kClassroomOptions are exactly the options ./bdpt adds to the lecture's") {
+    std::set<std::string> lecture, added, listed(std::begin(kClassroomOptions), std::end(kClassroomOptions));
+    for (const OptionRow<CommandLine>& o : kOptions)
+        if (o.name) lecture.insert(o.name);
+    for (const OptionRow<ClassroomLine>& o : classroomTable())
+        if (o.name && !lecture.count(o.name)) added.insert(o.name);
+    CHECK(added.size() >= 10);
+    CHECK(added == listed);
 }
 
 TEST_CASE("--out replaces a file the project ships (under scenes/ or lecture_notes/) only with --overwrite") {

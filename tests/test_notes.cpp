@@ -1297,6 +1297,42 @@ TEST_CASE("pages 9, 15, 16 and 17 are teachable: at most 1,300, 1,800, 1,000 and
     }
 }
 
+// Every command the READMEs and the pages print writes under build/ (which make clean removes),
+// so that running them leaves the repository as it was (git status clean): --out, --strategies,
+// --log and a compiler's -o. Upper-case names (FILE.png, DIR) are the option tables' placeholders.
+TEST_CASE("every command the READMEs and the notes print writes under build/") {
+    std::vector<std::string> files = notePages();
+    files.push_back("README.md");
+    files.push_back("tests/README.md");
+    std::regex output("(?:--out|--strategies|--log|-o) ([^ `\"|)]+)");
+    int outputs = 0, outside = 0;
+    for (const std::string& file : files) {
+        std::string text = slurp(file);
+        for (std::sregex_iterator it(text.begin(), text.end(), output), end; it != end; ++it) {
+            const std::string path = (*it)[1];
+            const std::string stem = path.substr(0, path.find('.'));
+            if (std::none_of(stem.begin(), stem.end(), [](char c) { return std::islower((unsigned char)c); })) continue;  // FILE.png
+            CAPTURE(file);
+            CAPTURE(path);
+            ++outputs;
+            outside += path.rfind("build/", 0) != 0;
+            CHECK(path.rfind("build/", 0) == 0);
+        }
+    }
+    MESSAGE(outputs << " outputs of printed commands, " << outside << " outside build/");
+    CHECK(outputs > 50);
+}
+
+// The README is a first hour's guide: set-up, the tour, the command line, the scene format; the
+// depth is in the notes (its table of topics points there).
+TEST_CASE("the README is at most 400 lines") {
+    std::istringstream readme(slurp("README.md"));
+    int lines = 0;
+    for (std::string line; std::getline(readme, line);) ++lines;
+    CHECK(lines > 200);
+    CHECK(lines <= 400);
+}
+
 TEST_CASE("no development history in the pages or the READMEs") {
     std::vector<std::string> files = notePages();
     files.push_back("README.md");

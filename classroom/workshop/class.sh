@@ -9,8 +9,8 @@
 #   metropolis.png             door-hidden: bdpt against Metropolis (mlt) at equal time, with RMSE
 #   error-vs-time-*.png        error against time, at most six methods a chart, one colour each
 # Each comparison a titled 16:9 figure (1920x1080), the slides' captions under their images.
-# About 4 minutes on a 2-core machine (CLASS_SECONDS=S, default 20, sets the equal-time runs: CPU
-# seconds per method).
+# About 6.5 minutes of CPU, 4.5 on an idle 2-core machine (CLASS_SECONDS=S, default 20, sets the
+# equal-time runs: CPU seconds per method; a busy machine gives the same figures, later).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 command -v gnuplot >/dev/null || { echo "make class: needs gnuplot, which is not installed (apt-get install gnuplot-nox); nothing done" >&2; exit 1; }
@@ -57,7 +57,8 @@ mistake ray-offset tests/thin-gap.scene lt 4096 --fixed-ray-offset "a fixed ray 
 mistake delta-density-one scenes/glass-box.scene bdpt 256 --delta-density-one "MIS densities after mirror and glass stored as 1: the caustic's noise" \
   --res 64x64 --ref scenes/refs/glass-box.pfm
 mistake no-scramble scenes/cornell.scene pt 16 --no-scramble "Sobol points without their scrambles: every pixel draws the same points"
-mistake fixed-start scenes/door.scene pssmlt 2 --fixed-start "every Metropolis chain starts from one state: start-up bias"
+mistake fixed-start scenes/door.scene pssmlt 8 --fixed-start "every Metropolis chain starts from one state: start-up bias" \
+  --res 64x64 --ref scenes/refs/door.pfm
 
 # Error against time: each method for the same time on one thread, the RMSE of every pass against
 # the scene's reference; two runs at a time. The methods are make charts' (their options and
