@@ -28,9 +28,18 @@ inline std::string slideCaption(const std::string& entry) {
     static const std::map<std::string, std::string> captions = {
         {"pt", "(a) Unidirectional (eye tracing)"}, {"nee", "(b) Unidirectional + next event"},
         {"lt", "(c) Next event (light tracing)"},   {"ir", "(d) Instant radiosity"},
-        {"bdpt", "(f) Bidirectional path tracing"}};
+        {"bdpt", "(f) Bidirectional path tracing"}, {"nee --mis", "(b) Unidirectional + next event, with MIS"},
+        {"vcm", "Vertex Connection and Merging (VCM, later)"}, {"mlt", "Metropolis-Sampling (see later): Veach's mlt"},
+        {"pssmlt", "Metropolis-Sampling (see later): pssmlt"}, {"mmlt", "Metropolis-Sampling (see later): mmlt"}};
     if (entry.rfind("ir --clamp ", 0) == 0 && entry.find(' ', 11) == std::string::npos) return "(e) Instant radiosity (clamped)";
-    auto it = captions.find(entry);
+    // A later method keeps its caption with options that tune it but do not change what it is.
+    std::istringstream words(entry);
+    std::string method, option, value;
+    words >> method;
+    const std::set<std::string> tuning = {"--bootstrap", "--chains", "--radius", "--alpha", "--sigma", "--large-step", "--seed"};
+    bool tuned = method == "vcm" || method == "mlt" || method == "pssmlt" || method == "mmlt";
+    while (tuned && words >> option >> value) tuned = tuning.count(option) > 0;
+    auto it = captions.find(tuned ? method : entry);
     return it == captions.end() ? "" : it->second;
 }
 

@@ -428,6 +428,18 @@ TEST_CASE("--side-by-side --time T gives every panel T seconds of CPU time") {
     CHECK(used > 0.9 * panels * T);
     CHECK(used < 1.3 * panels * T + 0.2);
     CHECK(contains(r.out, "CPU s on 1 thread"));
+    // Fewer panels than cores (8 given, 2 panels): still one thread each, each with T of CPU.
+    const double before2 = cpuNow();
+    r = run({"scenes/cornell.scene", "--res", "32x32", "--side-by-side", "pt,nee", "--threads", "8", "--time", "0.3", "--out", "build/tmp/fh_cpu2.png"});
+    const double used2 = cpuNow() - before2;
+    REQUIRE(r.status == 0);
+    CHECK(contains(r.out, "1. pt: "));
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') >= 2);
+    size_t onOne = 0;
+    for (size_t at = 0; (at = r.out.find(" CPU s on 1 thread,", at)) != std::string::npos; ++at) ++onOne;
+    CHECK(onOne == 2);
+    CHECK(used2 > 0.9 * 2 * T);
+    CHECK(used2 < 1.3 * 2 * T + 0.2);
 }
 
 // --time is CPU time everywhere: a render on two threads at --time T spends T CPU seconds in all
@@ -451,6 +463,160 @@ TEST_CASE("--time T: T CPU seconds for a render on two threads; --wall-time name
     CHECK(std::atof(r.out.c_str() + at + 4) >= 0.6);  // "... in W s (C CPU s)": C reached T
     CHECK(contains(r.out, " CPU s), mean "));
     CHECK(contains(run({"scenes/cornell.scene", "--time", "1", "--wall-time", "1"}).err, "--time and --wall-time both given"));
+}
+
+// The ratio panel as drawn, read back from the PNG: the rightmost tile is found on the canvas's
+// middle row (the background is (24,24,24); every pixel of a panel differs from it), its blocks
+// (a twelfth of the image across) read at their centres. Blocks: {R, G, B} per block, row by row.
+struct DrawnRatioPanel {
+    int blocksX = 0, blocksY = 0, block = 0;
+    std::vector<std::array<int, 3>> colours;
+};
+static DrawnRatioPanel drawnRatioPanel(const std::string& png, int W, int H) {
+    int cw = 0, ch = 0, n = 0;
+    unsigned char* rgb = stbi_load(png.c_str(), &cw, &ch, &n, 3);
+    DrawnRatioPanel d;
+    if (!rgb) return d;
+    auto background = [&](int x, int y) {
+        const unsigned char* p = rgb + 3 * (size_t(y) * cw + x);
+        return p[0] == 24 && p[1] == 24 && p[2] == 24;
+    };
+    int y = ch / 2, right = cw - 1;
+    while (right > 0 && background(right, y)) --right;
+    int left = right;
+    while (left > 0 && !background(left - 1, y)) --left;
+    const int zoom = (right - left + 1) / W;
+    int top = y;
+    while (top > 0 && !background(left, top - 1)) --top;
+    d.block = std::max(2, std::min(W, H) / 12);
+    d.blocksX = (W + d.block - 1) / d.block, d.blocksY = (H + d.block - 1) / d.block;
+    for (int by = 0; by < H; by += d.block)
+        for (int bx = 0; bx < W; bx += d.block) {
+            int cx = left + zoom * (bx + std::min(d.block, W - bx) / 2), cy = top + zoom * (by + std::min(d.block, H - by) / 2);
+            const unsigned char* p = rgb + 3 * (size_t(cy) * cw + cx);
+            d.colours.push_back({p[0], p[1], p[2]});
+        }
+    stbi_image_free(rgb);
+    return d;
+}
+// Each block of two PFMs: the sums of their pixels' channels, as the panel compares them.
+static std::vector<std::pair<double, double>> blockSums(const std::string& a, const std::string& b, int block) {
+    Image A, B;
+    std::vector<std::pair<double, double>> sums;
+    if (!readPFM(a, A) || !readPFM(b, B)) return sums;
+    for (int by = 0; by < A.height; by += block)
+        for (int bx = 0; bx < A.width; bx += block) {
+            double sa = 0, sb = 0;
+            for (int y = by; y < std::min(A.height, by + block); ++y)
+                for (int x = bx; x < std::min(A.width, bx + block); ++x)
+                    sa += double(A.at(x, y).x) + A.at(x, y).y + A.at(x, y).z, sb += double(B.at(x, y).x) + B.at(x, y).y + B.at(x, y).z;
+            sums.push_back({sa, sb});
+        }
+    return sums;
+}
+
+// --ratio-panel mean, by what it shows: a block is red where the second entry is the brighter, blue
+// where it is the darker (the sign read from the two panels' own PFMs here), grey where the two
+// differ by no more than their noise. The eta^2 mistake is a bias of 1.77 under the water, far
+// above 16 passes' noise: most lit blocks are coloured, each the right way. The same method at two
+// seeds differs by noise alone: nearly every block is grey. (A mask from one pass's variance, 16
+// times the mean's, would grey the eta^2 figure; colours swapped would paint it blue.)
+TEST_CASE("--ratio-panel mean: red where the mistake is brighter, grey only within the noise, read from the figure") {
+    struct Figure { const char* entries; const char* out; int coloured = 0, grey = 0, wrongSign = 0, lit = 0; };
+    Figure figures[] = {{"lt,lt --symmetric-refraction", "build/tmp/fh_rp_eta"}, {"lt,lt --seed 2", "build/tmp/fh_rp_seeds"}};
+    for (Figure& f : figures) {
+        CAPTURE(std::string(f.entries));
+        Run r = run({"scenes/refraction.scene", "--res", "64x48", "--spp", "256", "--side-by-side", f.entries, "--ratio-panel", "mean",
+                     "--quiet", "--out", std::string(f.out) + ".png"});
+        REQUIRE(r.status == 0);
+        DrawnRatioPanel d = drawnRatioPanel(std::string(f.out) + ".png", 64, 48);
+        REQUIRE(d.colours.size() == size_t(d.blocksX * d.blocksY));
+        auto sums = blockSums(std::string(f.out) + "-1-lt.pfm", std::string(f.out) + "-2-lt.pfm", d.block);
+        REQUIRE(sums.size() == d.colours.size());
+        for (size_t i = 0; i < sums.size(); ++i) {
+            const auto& c = d.colours[i];
+            if (!(sums[i].first > 0 && sums[i].second > 0)) continue;
+            ++f.lit;
+            const bool grey = std::abs(c[0] - c[1]) < 8 && std::abs(c[1] - c[2]) < 8;
+            if (grey) { ++f.grey; continue; }
+            ++f.coloured;
+            const bool red = c[0] > c[2];
+            f.wrongSign += red != (sums[i].second > sums[i].first);
+        }
+        MESSAGE(std::string(f.entries) << ": " << f.lit << " lit blocks, " << f.coloured << " coloured (" << f.wrongSign << " the wrong way), " << f.grey << " grey");
+        CHECK(f.lit >= 60);
+        CHECK(f.wrongSign == 0);
+    }
+    CHECK(figures[0].coloured >= figures[0].lit / 2);  // the bias shows
+    CHECK(figures[1].grey >= 0.9 * figures[1].lit);    // noise alone does not
+}
+
+// The slides' captions of the six panels, as the slide "Results from different techniques" words
+// them (../shared/seeds: "a) Unidirectional (eye tracing)" ...), and those of the later methods.
+// Each must be drawn under its own image: found in the figure's pixels, right under a panel and
+// starting at its left edge, by drawing the expected words the same way and matching them there.
+static int captionsFound(const std::string& png, const std::vector<std::string>& captions) {
+    int cw = 0, ch = 0, n = 0;
+    unsigned char* rgb = stbi_load(png.c_str(), &cw, &ch, &n, 3);
+    if (!rgb) return -1;
+    auto bg = [&](int x, int y) { const unsigned char* p = rgb + 3 * (size_t(y) * cw + x); return p[0] == 24 && p[1] == 24 && p[2] == 24; };
+    // Panels: runs of 64 or more pixels off the background; a panel's bottom-left corner is where
+    // such a run starts in a row and not in the row below.
+    std::vector<std::pair<int, int>> corners;
+    auto runStarts = [&](int y) {
+        std::set<int> starts;
+        for (int x = 0, run = 0; x < cw; ++x) {
+            run = bg(x, y) ? 0 : run + 1;
+            if (run == 64) starts.insert(x - 63);
+        }
+        return starts;
+    };
+    std::set<int> above = runStarts(0);
+    for (int y = 1; y < ch; ++y) {
+        std::set<int> here = runStarts(y);
+        for (int x : above)
+            if (!here.count(x)) corners.push_back({x, y});
+        above = here;
+    }
+    int found = 0;
+    for (const std::string& caption : captions) {
+        bool seen = false;
+        for (int scale = 1; scale <= 6 && !seen; ++scale) {
+            // A line of labels is 7 scale pixels high; the words drawn 4 pixels in (a glyph may start left of its pen).
+            const int w = labelWidth(caption, scale) + 8, h = 7 * scale;
+            std::vector<unsigned char> ink(size_t(w) * h * 3, 24);
+            drawLabel(ink, w, h, 4, 0, caption, scale);
+            for (const auto& [x0, bottom] : corners)
+                for (int y0 = bottom; y0 < bottom + 12 * scale && y0 + h <= ch && !seen; ++y0) {
+                    if (x0 < 4 || x0 - 4 + w > cw) break;
+                    bool same = true;
+                    for (int y = 0; y < h && same; ++y)
+                        same = std::memcmp(&ink[3 * size_t(y) * w], rgb + 3 * (size_t(y0 + y) * cw + x0 - 4), 3 * size_t(w)) == 0;
+                    seen = same;
+                }
+        }
+        found += seen;
+    }
+    stbi_image_free(rgb);
+    return found;
+}
+
+TEST_CASE("--side-by-side: the slides' captions are drawn under their panels, read from the figure") {
+    REQUIRE(fontProblem().empty());
+    const std::vector<std::string> six = {"(a) Unidirectional (eye tracing)", "(b) Unidirectional + next event", "(c) Next event (light tracing)",
+                                          "(d) Instant radiosity", "(e) Instant radiosity (clamped)", "(f) Bidirectional path tracing"};
+    Run r = run({"scenes/cornell-glass.scene", "--res", "48x48", "--spp", "1", "--side-by-side", "pt,nee,lt,ir,ir --clamp 1e-5,bdpt", "--quiet",
+                 "--out", "build/tmp/fh_captions.png"});
+    REQUIRE(r.status == 0);
+    CHECK(captionsFound("build/tmp/fh_captions.png", six) == 6);
+    CHECK(captionsFound("build/tmp/fh_captions.png", {"(e) Unidirectional (eye tracing)", "(a) Instant radiosity"}) == 0);  // the search bites
+    // The later methods and nee's MIS variant are named as the slides name them too, not by a bare method name.
+    const std::vector<std::string> later = {"Vertex Connection and Merging (VCM, later)", "Metropolis-Sampling (see later): Veach's mlt",
+                                            "(b) Unidirectional + next event, with MIS"};
+    r = run({"scenes/cornell.scene", "--res", "32x32", "--spp", "1", "--side-by-side", "vcm,mlt --bootstrap 1000,nee --mis", "--quiet",
+             "--out", "build/tmp/fh_captions_later.png"});
+    REQUIRE(r.status == 0);
+    CHECK(captionsFound("build/tmp/fh_captions_later.png", later) == 3);
 }
 
 // --ratio-panel mean: the mistaken entry over the right one. Light tracing through water with the
