@@ -442,6 +442,49 @@ TEST_CASE("the multi-chain perturbation's acceptance is that of its moves on the
     CHECK(fOnlyOff > compared / 10);
 }
 
+// The multi-chain perturbation turns the direction toward the next vertex by an angle of density
+// 1/theta on Veach's fixed range, 1e-4 to 0.1 degrees (Veach 1997, p. 357): log10 of the angle in
+// degrees is uniform on [-4, -1], a third in each decade. Measured here from the paths themselves:
+// the angle at the first turned vertex c between x's direction toward x_{c-1} and y's. (Radians
+// taken for degrees would turn up to 5.7 degrees.)
+TEST_CASE("the multi-chain perturbation's turns follow Veach's range: 1e-4 to 0.1 degrees, density 1/theta") {
+    Scene scene = sceneAt("scenes/cornell-glass.scene", 32, 32);
+    RenderOptions opt = quietOptions(Method::MLT, 1);
+    opt.chainShortPaths = true;
+    Rng rng = makeRng(12, 0, 0);
+    std::vector<double> log10Degrees;
+    for (const MutatedPath& x : startPaths(scene, opt, 4000)) {
+        const int end = multiChainEnd(scene, x);
+        int c = x.k() - 1;
+        while (c > end && !connectable(scene, x.x[c])) --c;
+        if (end < 0 || c <= end) continue;  // no turned vertex
+        for (int proposal = 0; proposal < 8; ++proposal) {
+            MutatedPath y;
+            if (!(multiChainPerturbation(scene, x, rng, y) > 0) || y.k() != x.k()) continue;
+            auto direction = [&](const MutatedPath& p) {
+                Vec3 d = p.x[c - 1].sp.p - p.x[c].sp.p;
+                return std::array<double, 3>{d.x, d.y, d.z};
+            };
+            auto a = direction(x), b = direction(y);
+            double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
+            double dotAB = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            double theta = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dotAB);  // exact for small angles, unlike acos
+            log10Degrees.push_back(std::log10(theta * 180 / kPi));
+        }
+    }
+    REQUIRE(log10Degrees.size() > 200);
+    double lowest = *std::min_element(log10Degrees.begin(), log10Degrees.end());
+    double highest = *std::max_element(log10Degrees.begin(), log10Degrees.end());
+    int decade[3] = {0, 0, 0};
+    for (double l : log10Degrees) ++decade[std::clamp(int(std::floor(l + 4)), 0, 2)];
+    const double n = double(log10Degrees.size());
+    MESSAGE(log10Degrees.size() << " turns: 10^" << lowest << " to 10^" << highest << " degrees; per decade from 1e-4: "
+            << decade[0] / n << ", " << decade[1] / n << ", " << decade[2] / n);
+    CHECK(lowest > -4.2);  // float vertices blur the smallest turns a little
+    CHECK(highest < -0.98);
+    for (int d : decade) CHECK(std::fabs(d / n - 1.0 / 3) < 0.1);
+}
+
 // The target f at a glass vertex carries the probability of the lobe the path took there: F where
 // the path reflects, 1 - F where it refracts, F the dielectric's Fresnel reflectance for the angle
 // the path makes with the normal (written out here from Fresnel's equations). With F for both
