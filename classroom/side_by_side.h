@@ -32,14 +32,18 @@ inline std::string slideCaption(const std::string& entry) {
         {"vcm", "Vertex Connection and Merging (VCM, later)"}, {"mlt", "Metropolis-Sampling (see later): Veach's mlt"},
         {"pssmlt", "Metropolis-Sampling (see later): pssmlt"}, {"mmlt", "Metropolis-Sampling (see later): mmlt"}};
     if (entry.rfind("ir --clamp ", 0) == 0 && entry.find(' ', 11) == std::string::npos) return "(e) Instant radiosity (clamped)";
-    // A later method keeps its caption with options that tune it but do not change what it is.
+    // A method keeps its caption with its own budget or seed; a later one with options that tune
+    // it but do not change what it is.
     std::istringstream words(entry);
-    std::string method, option, value;
+    std::string method, option, value, rest;
     words >> method;
-    const std::set<std::string> tuning = {"--bootstrap", "--chains", "--radius", "--alpha", "--sigma", "--large-step", "--seed"};
-    bool tuned = method == "vcm" || method == "mlt" || method == "pssmlt" || method == "mmlt";
-    while (tuned && words >> option >> value) tuned = tuning.count(option) > 0;
-    auto it = captions.find(tuned ? method : entry);
+    const std::set<std::string> budget = {"--spp", "--seed"}, tuning = {"--bootstrap", "--chains", "--radius", "--alpha", "--sigma", "--large-step"};
+    const bool later = method == "vcm" || method == "mlt" || method == "pssmlt" || method == "mmlt";
+    for (std::string word; words >> word;) {
+        if ((budget.count(word) || (later && tuning.count(word))) && words >> value) continue;
+        rest += " " + word;
+    }
+    auto it = captions.find(method + rest);
     return it == captions.end() ? "" : it->second;
 }
 
@@ -318,28 +322,39 @@ inline int writePanels(const std::vector<std::unique_ptr<SideBySidePanel>>& pane
 inline std::vector<std::string> sideBySideTitle(const std::vector<std::unique_ptr<SideBySidePanel>>& panels, const ClassroomLine& cl,
                                                 const Scene& scene) {
     std::set<std::string> scenes;
-    for (auto& panel : panels) scenes.insert(fileStem(panel->cl.scenePath));
+    std::set<int> spps;
+    for (auto& panel : panels) scenes.insert(fileStem(panel->cl.scenePath)), spps.insert(panel->cl.opt.spp);
     std::string what = scenes.size() == 1 ? *scenes.begin() : std::to_string(scenes.size()) + " scenes";
     what += " (" + std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) + "): ";
-    if (cl.opt.seconds > 0) what += "equal CPU time, " + threeDigits(cl.opt.seconds) + " s each on one thread";
-    else what += std::to_string(cl.opt.spp) + (cl.opt.spp == 1 ? " sample" : " samples") + " per pixel each";
+    if (cl.opt.seconds > 0) {
+        what += "equal CPU time, " + threeDigits(cl.opt.seconds) + " s each on one thread";
+    } else if (spps.size() == 1) {  // each panel's own --spp, which an entry may set
+        what += std::to_string(*spps.begin()) + (*spps.begin() == 1 ? " sample" : " samples") + " per pixel each";
+    } else {
+        for (size_t i = 0; i < panels.size(); ++i) what += (i ? ", " : "") + std::to_string(panels[i]->cl.opt.spp);
+        what += " samples per pixel";
+    }
     std::vector<std::string> lines;
     if (!cl.title.empty()) lines.push_back(cl.title);
     lines.push_back(what);
     return lines;
 }
 
-inline int runSideBySide(const std::vector<std::string>& args, ClassroomLine& cl, const Scene& scene, const Image& ref, std::ostream& out,
-                         std::ostream& err) {
-    std::vector<std::unique_ptr<SideBySidePanel>> panels;
-    try {
-        panels = sideBySidePanels(args, cl);
-    } catch (const InputError& e) {
-        err << e.what() << "\n";
-        return 2;
-    }
-    if (int status = loadPanelScenes(panels, cl, scene, ref, err)) return status;
-    if (!cl.ratioPanel.empty() && panels.size() != 2) {
+// The figure's layout: room under each image for its widest caption, above them for the title.
+inline SideBySideLayout sideBySideLayout(const std::vector<std::unique_ptr<SideBySidePanel>>& panels, const ClassroomLine& cl,
+                                         const Scene& scene, const std::vector<std::string>& title) {
+    int widest = labelWidth("(b) Unidirectional + next event", 1), widestTitle = 1;
+    for (auto& panel : panels)
+        widest = std::max({widest, labelWidth(panel->label + ": 999 spp, 99.9 CPU s", 1), labelWidth(slideCaption(panel->label), 1)});
+    if (!cl.ratioPanel.empty()) widest = std::max(widest, labelWidth("squared error: '" + panels[1]->label + "' / '" + panels[0]->label + "'", 1));
+    for (const std::string& line : title) widestTitle = std::max(widestTitle, labelWidth(line, 1));
+    return SideBySideLayout(int(panels.size()) + !cl.ratioPanel.empty(), scene.camera.width, scene.camera.height, widest, widestTitle,
+                            int(title.size()) + !cl.ratioPanel.empty());
+}
+
+// --ratio-panel's needs, before any work: two entries, and for "error" a reference. Returns the exit status, or 0.
+inline int checkRatioPanel(const ClassroomLine& cl, size_t entries, const Image& ref, std::ostream& err) {
+    if (!cl.ratioPanel.empty() && entries != 2) {
         err << "bdpt: --ratio-panel divides the second entry by the first: give --side-by-side two entries (nothing rendered)\n";
         return 2;
     }
@@ -347,21 +362,14 @@ inline int runSideBySide(const std::vector<std::string>& args, ClassroomLine& cl
         err << "bdpt: --ratio-panel error compares each entry's squared error against the reference: give --ref (nothing rendered)\n";
         return 2;
     }
+    return 0;
+}
+
+// Runs every panel on its threads (one each with --time, else a share of the cores) until all are
+// done, rewriting the figure every --live seconds meanwhile.
+template <class WriteFrame>
+inline void renderPanels(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const ClassroomLine& cl, const WriteFrame& writeFrame) {
     const int n = int(panels.size()), cores = cl.opt.threads > 0 ? cl.opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    const std::vector<std::string> title = sideBySideTitle(panels, cl, scene);
-    int widest = labelWidth("(b) Unidirectional + next event", 1), widestTitle = 1;
-    for (auto& panel : panels) widest = std::max(widest, labelWidth(panel->label + ": 999 spp, 99.9 CPU s", 1));
-    if (!cl.ratioPanel.empty()) widest = std::max(widest, labelWidth("squared error: '" + panels[1]->label + "' / '" + panels[0]->label + "'", 1));
-    for (const std::string& line : title) widestTitle = std::max(widestTitle, labelWidth(line, 1));
-    const SideBySideLayout layout(n + !cl.ratioPanel.empty(), scene.camera.width, scene.camera.height, widest, widestTitle,
-                                  int(title.size()) + !cl.ratioPanel.empty());
-    auto writeFrame = [&] {
-        std::snprintf(gFileBeingWritten, sizeof gFileBeingWritten, "%s", tempName(cl.out).c_str());
-        bool ok = writePNGBytes(sideBySideFrame(panels, ref, layout, title, cl.ratioPanel), layout.canvasW, layout.canvasH, cl.out);
-        gFileBeingWritten[0] = 0;
-        return ok;
-    };
-    if (cl.liveSeconds > 0) writeFrame();  // at once: a viewer opens it, and never shows an older run's image
     std::vector<std::thread> running;
     for (auto& panel : panels) running.push_back(startPanel(*panel, cl.opt.seconds > 0 ? 1 : std::max(1, cores / n)));
     auto lastFrame = std::chrono::steady_clock::now();
@@ -377,6 +385,29 @@ inline int runSideBySide(const std::vector<std::string>& args, ClassroomLine& cl
     for (std::thread& t : running) t.join();
     for (auto& panel : panels)
         if (panel->outOfMemory) throw std::bad_alloc();
+}
+
+inline int runSideBySide(const std::vector<std::string>& args, ClassroomLine& cl, const Scene& scene, const Image& ref, std::ostream& out,
+                         std::ostream& err) {
+    std::vector<std::unique_ptr<SideBySidePanel>> panels;
+    try {
+        panels = sideBySidePanels(args, cl);
+    } catch (const InputError& e) {
+        err << e.what() << "\n";
+        return 2;
+    }
+    if (int status = loadPanelScenes(panels, cl, scene, ref, err)) return status;
+    if (int status = checkRatioPanel(cl, panels.size(), ref, err)) return status;
+    const std::vector<std::string> title = sideBySideTitle(panels, cl, scene);
+    const SideBySideLayout layout = sideBySideLayout(panels, cl, scene, title);
+    auto writeFrame = [&] {
+        std::snprintf(gFileBeingWritten, sizeof gFileBeingWritten, "%s", tempName(cl.out).c_str());
+        bool ok = writePNGBytes(sideBySideFrame(panels, ref, layout, title, cl.ratioPanel), layout.canvasW, layout.canvasH, cl.out);
+        gFileBeingWritten[0] = 0;
+        return ok;
+    };
+    if (cl.liveSeconds > 0) writeFrame();  // at once: a viewer opens it, and never shows an older run's image
+    renderPanels(panels, cl, writeFrame);
     if (!writeFrame()) {
         err << "bdpt: cannot write " << cl.out << "\n";
         return 1;

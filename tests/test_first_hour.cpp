@@ -601,6 +601,39 @@ static int captionsFound(const std::string& png, const std::vector<std::string>&
     return found;
 }
 
+// Whether text is drawn anywhere in the figure, at any of the label scales (a title line).
+static bool textFound(const std::string& png, const std::string& text) {
+    int cw = 0, ch = 0, n = 0;
+    unsigned char* rgb = stbi_load(png.c_str(), &cw, &ch, &n, 3);
+    if (!rgb) return false;
+    bool seen = false;
+    for (int scale = 1; scale <= 8 && !seen; ++scale) {
+        const int w = labelWidth(text, scale) + 8, h = 7 * scale;
+        std::vector<unsigned char> ink(size_t(w) * h * 3, 24);
+        drawLabel(ink, w, h, 4, 0, text, scale);
+        for (int y0 = 0; y0 + h <= ch && !seen; ++y0)
+            for (int x0 = 0; x0 + w <= cw && !seen; ++x0) {
+                bool same = true;
+                for (int y = 0; y < h && same; ++y)
+                    same = std::memcmp(&ink[3 * size_t(y) * w], rgb + 3 * (size_t(y0 + y) * cw + x0), 3 * size_t(w)) == 0;
+                seen = same;
+            }
+    }
+    stbi_image_free(rgb);
+    return seen;
+}
+
+// The title says what each panel had: an entry's own --spp, not the shared one.
+TEST_CASE("--side-by-side's title gives each entry's own samples per pixel, read from the figure") {
+    Run r = run({"scenes/cornell.scene", "--res", "16x16", "--side-by-side", "pt --spp 4,nee --spp 8", "--quiet", "--out", "build/tmp/fh_title.png"});
+    REQUIRE(r.status == 0);
+    CHECK(textFound("build/tmp/fh_title.png", "cornell (16x16): 4, 8 samples per pixel"));
+    CHECK(!textFound("build/tmp/fh_title.png", "cornell (16x16): 16 samples per pixel each"));  // the default --spp: none had it
+    r = run({"scenes/cornell.scene", "--res", "16x16", "--spp", "16", "--side-by-side", "pt,nee", "--quiet", "--out", "build/tmp/fh_title.png"});
+    REQUIRE(r.status == 0);
+    CHECK(textFound("build/tmp/fh_title.png", "cornell (16x16): 16 samples per pixel each"));
+}
+
 TEST_CASE("--side-by-side: the slides' captions are drawn under their panels, read from the figure") {
     REQUIRE(fontProblem().empty());
     const std::vector<std::string> six = {"(a) Unidirectional (eye tracing)", "(b) Unidirectional + next event", "(c) Next event (light tracing)",
