@@ -184,7 +184,7 @@ serve-web: web
 # make test-web: the page in headless Debian chromium, driven over its DevTools protocol
 # (python3-websocket): means against ./bdpt's, every method, a scene error, a pixel's strategies,
 # a screenshot (build/test-web/page.png).
-test-web: web bdpt
+test-web: web bdpt build/bdpt-lecture
 	/usr/bin/python3 tests/test_web.py
 
 # make bench-web: time per sample of the WebAssembly build (under Node, one thread) against
