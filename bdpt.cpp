@@ -2816,6 +2816,34 @@ struct PassStorage {
     MetropolisPass metropolis;
 };
 
+// Per-strategy images (--strategies): strategy (s,t) of path length k = s+t-1 <= maxLength, rows
+// by k and s = 0..k within a row (the slides' pyramid), then (vcm) one image per path length of
+// all its merges. Each comes twice: unweighted and MIS-weighted.
+struct StrategyImages {
+    int maxLength = 0;
+    bool merges = false;       // vcm: one image of all merges of each path length
+    std::vector<Image> images; // [2 index + weighted], index(s, t) or mergeIndex(k)
+    StrategyImages() = default;
+    explicit StrategyImages(const RenderOptions& opt)
+        : maxLength(opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0), merges(opt.method == Method::VCM) {}
+    static int index(int s, int t) { return (s + t - 1) * (s + t) / 2 - 1 + s; }
+    int mergeIndex(int k) const { return maxLength * (maxLength + 3) / 2 + k - 1; }
+    int count() const { return merges ? mergeIndex(maxLength + 1) : maxLength * (maxLength + 3) / 2; }
+    int of(const StrategySplat& c) const { return c.merge ? mergeIndex(c.s + c.t - 1) : index(c.s, c.t); }
+    const Image& at(int s, int t, bool weighted) const { return images[2 * size_t(index(s, t)) + weighted]; }
+    const Image& merged(int k, bool weighted) const { return images[2 * size_t(mergeIndex(k)) + weighted]; }
+    // fn(k, s, image index) row by row: s = 0..k the strategies of length k, s = k + 1 its merges.
+    template <class Fn>
+    void forEach(const Fn& fn) const {
+        for (int k = 1; k <= maxLength; ++k)
+            for (int s = 0; s <= k + merges; ++s) {
+                bool merge = s == k + 1;
+                if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
+                fn(k, s, merge ? mergeIndex(k) : index(s, k + 1 - s));
+            }
+    }
+};
+
 struct RenderResult {
     Image image;                    // mean over passes
     Image variance;                 // per pixel and channel: variance of that mean (from the passes)
@@ -2825,7 +2853,7 @@ struct RenderResult {
     double cpuSeconds = 0;          // CPU seconds, all the render's threads together (--time's budget)
     double energyUnclamped = 0, energyClamped = 0;  // ir --clamp: the energy gathered, before and after
     double clampRemoved() const { return energyUnclamped > 0 ? 1 - energyClamped / energyUnclamped : 0; }
-    std::vector<Image> strategyImages;  // --strategies: [2 strategyImage(...) + weighted]
+    StrategyImages strategies;      // --strategies
     RayCount rays;                  // all threads, all passes (ir's VPL paths included)
     PassStorage method;             // what the method's last pass left
 };
@@ -2872,30 +2900,15 @@ inline SampleFunction sampleFunction(Method m) {
     return nullptr;  // not reached: every method has its case (-Wswitch checks)
 }
 
-// Per-strategy images (--strategies): strategy (s,t) of path length k = s+t-1 <= maxLength, rows
-// by k and s = 0..k within a row (the slides' pyramid), then (vcm) one image per path length of
-// all its merges. Each comes twice: unweighted (2i) and MIS-weighted (2i + 1).
-inline int strategyIndex(int s, int t) {
-    int k = s + t - 1;
-    return k * (k + 1) / 2 - 1 + s;
-}
-inline int mergeImageIndex(int k, int maxLength) { return maxLength * (maxLength + 3) / 2 + k - 1; }
-inline int strategyImage(const StrategySplat& c, int maxLength) {
-    return c.merge ? mergeImageIndex(c.s + c.t - 1, maxLength) : strategyIndex(c.s, c.t);
-}
-inline int strategyImageCount(const RenderOptions& opt) {  // vcm: one merge image per length
-    int L = opt.method == Method::BDPT || opt.method == Method::VCM ? opt.strategyMaxLength : 0;
-    return opt.method == Method::VCM ? mergeImageIndex(L + 1, L) : L * (L + 3) / 2;
-}
-
 // The film: per pixel the sums of the passes and their squares (image, variance), and the strategy images'.
 struct Film {
-    int width, height, strategyMaxLength;
+    int width, height;
+    StrategyImages strategies;  // their layout (the images come with finish())
     std::vector<double> sum, sumSq;
     std::vector<std::vector<double>> strategySum;
     Film(int w, int h, const RenderOptions& opt)
-        : width(w), height(h), strategyMaxLength(opt.strategyMaxLength), sum(3 * size_t(w) * h, 0.0), sumSq(sum.size(), 0.0),
-          strategySum(2 * strategyImageCount(opt), std::vector<double>(sum.size(), 0.0)) {}
+        : width(w), height(h), strategies(opt), sum(3 * size_t(w) * h, 0.0), sumSq(sum.size(), 0.0),
+          strategySum(2 * strategies.count(), std::vector<double>(sum.size(), 0.0)) {}
     void addStrategy(int image, int pixel, Vec3 value) {
         if (isFinite(value))
             for (int c = 0; c < 3; ++c) strategySum[image][3 * size_t(pixel) + c] += value[c];
@@ -2911,7 +2924,7 @@ struct Film {
                 else ++result.nonFinite;
             }
             for (const StrategySplat& s : row.strategySplats) {
-                int image = strategyImage(s, strategyMaxLength);
+                int image = strategies.of(s);
                 addStrategy(2 * image, s.pixel, s.value);
                 addStrategy(2 * image + 1, s.pixel, s.value * s.weight);
             }
@@ -2925,11 +2938,12 @@ struct Film {
     // The image (mean over n passes), its variance, and the strategy images.
     void finish(int n, RenderResult& result) const {
         result.image = result.variance = Image(width, height);
+        result.strategies = strategies;
         for (const std::vector<double>& s : strategySum) {
             Image img(width, height);
             for (size_t i = 0; i < img.pixels.size(); ++i)
                 for (int c = 0; c < 3; ++c) img.pixels[i][c] = float(s[3 * i + c] / n);
-            result.strategyImages.push_back(img);
+            result.strategies.images.push_back(img);
         }
         for (size_t i = 0; i < result.image.pixels.size(); ++i)
             for (int c = 0; c < 3; ++c) {
@@ -3085,27 +3099,15 @@ inline std::string replaceExtension(const std::string& path, const std::string& 
 }
 
 // The slides' "contributions of different paths", one file per strategy: dir/s1_t3_weighted.png
-// (and .pfm), and for vcm dir/merge_k3_weighted.png; fn(k, s, image) visits them row by row, s =
-// k + 1 being the merges of length k.
-template <class Fn>
-void forEachStrategyImage(int maxLength, bool merges, Fn fn) {
-    for (int k = 1; k <= maxLength; ++k)
-        for (int s = 0; s <= k + merges; ++s) {
-            bool merge = s == k + 1;
-            if (merge && k == 1) continue;  // a merge needs a vertex between the light and the camera
-            fn(k, s, merge ? mergeImageIndex(k, maxLength) : strategyIndex(s, k + 1 - s));
-        }
-}
-inline bool hasMergeImages(const RenderResult& r, int maxLength) { return int(r.strategyImages.size()) > maxLength * (maxLength + 3); }
-
-inline bool writeStrategyImages(const RenderResult& r, int maxLength, const std::string& dir, float exposure) {
+// (and .pfm), and for vcm dir/merge_k3_weighted.png.
+inline bool writeStrategyImages(const StrategyImages& strategies, const std::string& dir, float exposure) {
     bool ok = true;
     for (int weighted = 0; weighted < 2; ++weighted)
-        forEachStrategyImage(maxLength, hasMergeImages(r, maxLength), [&](int k, int s, int index) {
+        strategies.forEach([&](int k, int s, int index) {
             std::string name = dir + (s == k + 1 ? "/merge_k" + std::to_string(k) : "/s" + std::to_string(s) + "_t" + std::to_string(k + 1 - s)) +
                                (weighted ? "_weighted" : "_unweighted");
-            ok = ok && writePNG(r.strategyImages[2 * index + weighted], name + ".png", exposure) &&
-                 writePFM(r.strategyImages[2 * index + weighted], name + ".pfm");
+            const Image& img = strategies.images[2 * size_t(index) + weighted];
+            ok = ok && writePNG(img, name + ".png", exposure) && writePFM(img, name + ".pfm");
         });
     return ok;
 }
@@ -3764,7 +3766,7 @@ inline int runLecture(const std::vector<std::string>& args, std::ostream& out, s
     RenderResult r = render(scene, cl.opt);
     const std::string pfm = replaceExtension(cl.out, ".pfm");
     if (!makeFolders(folderOf(cl.out)) || !writePNG(r.image, cl.out, cl.exposure) || !writePFM(r.image, pfm) ||
-        (!cl.strategiesDir.empty() && (!makeFolders(cl.strategiesDir) || !writeStrategyImages(r, cl.strategyLength, cl.strategiesDir, cl.exposure)))) {
+        (!cl.strategiesDir.empty() && (!makeFolders(cl.strategiesDir) || !writeStrategyImages(r.strategies, cl.strategiesDir, cl.exposure)))) {
         err << "bdpt: cannot write " << cl.out << ", " << pfm << " or the strategy images\n";
         return 1;
     }

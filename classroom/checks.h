@@ -93,7 +93,7 @@ inline std::string checkOutputs(const ClassroomLine& cl, const std::string& pfm)
 // its chains' splats of one pass, bounded by 128 bytes a pixel; its chains' states do not grow
 // with the image. Appendix A gives the measurements behind both bounds.
 inline double estimatedBytes(const Scene& scene, const RenderOptions& opt, bool logging) {
-    int images = strategyImageCount(opt);
+    int images = StrategyImages(opt).count();
     double perPixel = 6 * sizeof(double) + 3 * sizeof(Vec3) + 3 + (logging ? 3 * sizeof(double) + sizeof(Vec3) : 0) +
                       images * (2 * 3 * sizeof(double) + sizeof(Vec3) + 3) +
                       (opt.method == Method::VCM ? 12 * (sizeof(PathVertex) + sizeof(VcmPass::Stored) + 8) + sizeof(Subpath) : 0) +

@@ -137,8 +137,7 @@ inline int writeOutputs(const ClassroomLine& cl, const RenderResult& r, const st
     }
     if (!cl.quiet) out << summaryLine(cl, r, pfm);
     if (!cl.strategiesDir.empty() &&
-        (!writeStrategyImages(r, cl.opt.strategyMaxLength, cl.strategiesDir, cl.exposure) ||
-         !writePyramids(r, cl.opt.strategyMaxLength, cl.strategiesDir, cl.exposure, out))) {
+        (!writeStrategyImages(r.strategies, cl.strategiesDir, cl.exposure) || !writePyramids(r.strategies, cl.strategiesDir, cl.exposure, out))) {
         err << "bdpt: cannot write the strategy images into " << cl.strategiesDir << "/\n";
         return 1;
     }

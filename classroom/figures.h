@@ -196,13 +196,10 @@ inline int writeRatio(const Image& a, const Image& b, const std::string& nameA, 
 // The pyramid's rows differ by orders of magnitude (each bounce keeps about the albedo), so each
 // row k is brightened by whole stops until its light, the sum of its weighted tiles, comes within
 // half a stop of the brightest row's; the tile's label prints them ("s1 t3 +2").
-inline std::vector<int> pyramidRowStops(const RenderResult& r, int maxLength) {
-    const bool merges = hasMergeImages(r, maxLength);
+inline std::vector<int> pyramidRowStops(const StrategyImages& strategies) {
+    const int maxLength = strategies.maxLength;
     std::vector<double> rowMean(maxLength + 1, 0);
-    for (int k = 1; k <= maxLength; ++k) {
-        for (int s = 0; s <= k; ++s) rowMean[k] += imageMean(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1]);
-        if (merges && k > 1) rowMean[k] += imageMean(r.strategyImages[2 * mergeImageIndex(k, maxLength) + 1]);
-    }
+    strategies.forEach([&](int k, int, int index) { rowMean[k] += imageMean(strategies.images[2 * size_t(index) + 1]); });
     double brightest = *std::max_element(rowMean.begin(), rowMean.end());
     std::vector<int> stops(maxLength + 1, 0);
     for (int k = 1; k <= maxLength; ++k)
@@ -236,12 +233,12 @@ inline std::string tileName(int k, int s) {  // "s1 t3", or "m k3" for the merge
 }
 
 // The montage of one kind (weighted or not), as sRGB bytes of layout.canvasW x layout.canvasH.
-inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLength, float exposure, bool weighted,
-                                                const PyramidLayout& layout, const std::vector<int>& rowStops) {
+inline std::vector<unsigned char> pyramidCanvas(const StrategyImages& strategies, float exposure, bool weighted, const PyramidLayout& layout,
+                                                const std::vector<int>& rowStops) {
     std::vector<unsigned char> canvas(size_t(layout.canvasW) * layout.canvasH * 3, 40);
-    forEachStrategyImage(maxLength, layout.merges, [&](int k, int s, int index) {
-        std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * index + weighted], exposure + rowStops[k]);
-        int x0 = layout.tileX(k, s, maxLength), y0 = layout.tileY(k);
+    strategies.forEach([&](int k, int s, int index) {
+        std::vector<unsigned char> tile = toSRGBBytes(strategies.images[2 * size_t(index) + weighted], exposure + rowStops[k]);
+        int x0 = layout.tileX(k, s, strategies.maxLength), y0 = layout.tileY(k);
         blitZoomed(canvas, layout.canvasW, tile, layout.W, layout.H, 1, x0, y0);
         std::string label = tileName(k, s) + (rowStops[k] > 0 ? " +" + std::to_string(rowStops[k]) : "");
         drawLabel(canvas, layout.canvasW, layout.canvasH, x0, y0 - layout.strip, label, layout.scale);
@@ -262,13 +259,14 @@ inline std::vector<unsigned char> pyramidCanvas(const RenderResult& r, int maxLe
 }
 
 // The two labelled pyramids (unweighted and MIS-weighted) beside the strategy images in dir.
-inline bool writePyramids(const RenderResult& r, int maxLength, const std::string& dir, float exposure, std::ostream& out) {
-    if (r.strategyImages.empty()) return true;
-    const PyramidLayout layout(r.image.width, r.image.height, maxLength, hasMergeImages(r, maxLength));
-    const std::vector<int> rowStops = pyramidRowStops(r, maxLength);
+inline bool writePyramids(const StrategyImages& strategies, const std::string& dir, float exposure, std::ostream& out) {
+    if (strategies.images.empty()) return true;
+    const int maxLength = strategies.maxLength;
+    const PyramidLayout layout(strategies.images[0].width, strategies.images[0].height, maxLength, strategies.merges);
+    const std::vector<int> rowStops = pyramidRowStops(strategies);
     for (int weighted = 0; weighted < 2; ++weighted) {
         std::string pyramid = dir + (weighted ? "/pyramid-weighted.png" : "/pyramid-unweighted.png");
-        if (!writePNGBytes(pyramidCanvas(r, maxLength, exposure, weighted, layout, rowStops), layout.canvasW, layout.canvasH, pyramid))
+        if (!writePNGBytes(pyramidCanvas(strategies, exposure, weighted, layout, rowStops), layout.canvasW, layout.canvasH, pyramid))
             return false;
         out << "wrote " << pyramid << "\n";
     }

@@ -710,12 +710,12 @@ static StrategyStats strategyStats(const Scene& scene, int maxLength, int render
         RenderOptions o = quietOptions(Method::BDPT, spp, 100 + k);
         o.strategyMaxLength = maxLength;
         RenderResult r = render(scene, o);
-        samples.resize(r.strategyImages.size(), std::vector<std::vector<double>>(5));
-        for (size_t img = 0; img < r.strategyImages.size(); ++img) {
+        samples.resize(r.strategies.images.size(), std::vector<std::vector<double>>(5));
+        for (size_t img = 0; img < r.strategies.images.size(); ++img) {
             double region[5] = {0};
             for (int y = 0; y < H; ++y)
                 for (int x = 0; x < W; ++x) {
-                    double v = average(r.strategyImages[img].at(x, y));
+                    double v = average(r.strategies.images[img].at(x, y));
                     region[(y * 2 / H) * 2 + x * 2 / W] += v * 4 / (W * H);
                     region[4] += v / (W * H);
                 }
@@ -748,13 +748,13 @@ TEST_CASE("per-strategy images: for one path length every strategy alone converg
         // The MIS-weighted strategies of length k, summed: bdpt's length-k term.
         std::vector<double> sumMean(5, 0), sumVar(5, 0);
         for (int s = 0; s <= k; ++s) {
-            int img = 2 * strategyIndex(s, k + 1 - s) + 1;
+            int img = 2 * StrategyImages::index(s, k + 1 - s) + 1;
             for (int q = 0; q < 5; ++q) { sumMean[q] += st.mean[img][q]; sumVar[q] += sqr(float(st.stdError[img][q])); }
         }
         CHECK(sumMean[4] > 0.005);  // there is light in it
         for (int s = 0; s <= k; ++s) {
             CAPTURE(s);
-            int img = 2 * strategyIndex(s, k + 1 - s);
+            int img = 2 * StrategyImages::index(s, k + 1 - s);
             double worst = 0;
             for (int q = 0; q < 5; ++q)  // weighted images are correlated; the variances are a rough bound
                 worst = std::max(worst, std::fabs(st.mean[img][q] - sumMean[q]) / std::sqrt(sqr(float(st.stdError[img][q])) + 2 * sumVar[q]));
@@ -774,7 +774,7 @@ TEST_CASE("the MIS-weighted strategy images add up to the rendered image exactly
         for (int x = 0; x < 12; ++x) {
             Vec3 sum(0);
             for (int k = 1; k <= 3; ++k)
-                for (int s = 0; s <= k; ++s) sum += r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1].at(x, y);
+                for (int s = 0; s <= k; ++s) sum += r.strategies.at(s, k + 1 - s, true).at(x, y);
             worst = std::max(worst, double(maxComponent(Vec3(std::fabs(sum.x - r.image.at(x, y).x), std::fabs(sum.y - r.image.at(x, y).y),
                                                               std::fabs(sum.z - r.image.at(x, y).z)))));
             total += average(r.image.at(x, y));
@@ -815,7 +815,7 @@ TEST_CASE("SDS: with a point light no method makes L S D S E; with an area light
     CHECK(imageMean(r.image) > 0.05);
     for (int s = 0; s <= 4; ++s) {
         CAPTURE(s);
-        double m = imageMean(r.strategyImages[2 * strategyIndex(s, 5 - s)]);  // k = 4, unweighted
+        double m = imageMean(r.strategies.at(s, 5 - s, false));  // k = 4, unweighted
         if (s == 0) CHECK(m > 0.05);
         else CHECK(m == 0.0);
     }
@@ -849,10 +849,10 @@ TEST_CASE("the pyramid's rows are brightened to within half a stop of the bright
     RenderOptions o = quietOptions(Method::BDPT, 16, 93);
     o.strategyMaxLength = 5;
     RenderResult r = render(scene, o);
-    std::vector<int> stops = pyramidRowStops(r, 5);
+    std::vector<int> stops = pyramidRowStops(r.strategies);
     std::vector<double> row(6, 0);
     for (int k = 1; k <= 5; ++k)
-        for (int s = 0; s <= k; ++s) row[k] += imageMean(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1]);
+        for (int s = 0; s <= k; ++s) row[k] += imageMean(r.strategies.at(s, k + 1 - s, true));
     double brightest = *std::max_element(row.begin(), row.end());
     for (int k = 1; k <= 5; ++k) {
         CAPTURE(k);
@@ -870,16 +870,16 @@ TEST_CASE("the pyramid's labels never cover a tile: every tile in the montage is
         RenderOptions o = quietOptions(m, 1, 95);
         o.strategyMaxLength = 3;
         RenderResult r = render(scene, o);
-        const bool merges = hasMergeImages(r, 3);
+        const bool merges = r.strategies.merges;
         CHECK(merges == (m == Method::VCM));
         PyramidLayout layout(96, 64, 3, merges);
-        std::vector<int> stops = pyramidRowStops(r, 3);
+        std::vector<int> stops = pyramidRowStops(r.strategies);
         for (int weighted = 0; weighted < 2; ++weighted) {
-            std::vector<unsigned char> canvas = pyramidCanvas(r, 3, 0, weighted, layout, stops);
+            std::vector<unsigned char> canvas = pyramidCanvas(r.strategies, 0, weighted, layout, stops);
             int tiles = 0, labelPixels = 0;
             for (int k = 1; k <= 3; ++k)
                 for (int s = 0; s <= k; ++s) {
-                    std::vector<unsigned char> tile = toSRGBBytes(r.strategyImages[2 * strategyIndex(s, k + 1 - s) + weighted], float(stops[k]));
+                    std::vector<unsigned char> tile = toSRGBBytes(r.strategies.at(s, k + 1 - s, weighted), float(stops[k]));
                     int x0 = layout.tileX(k, s, 3), y0 = layout.tileY(k), differ = 0;
                     for (int y = 0; y < 64; ++y)
                         for (int x = 0; x < 3 * 96; ++x) differ += canvas[3 * (size_t(y0 + y) * layout.canvasW + x0) + x] != tile[3 * size_t(y) * 96 + x];
@@ -966,8 +966,8 @@ TEST_CASE("a caustic seen directly: bdpt's error there is light tracing's at equ
         RenderResult r = render(variant, o);
         double s0 = 0, t1 = 0;
         for (auto [x, y] : block) {
-            s0 += average(r.strategyImages[2 * strategyIndex(0, 5) + 1].at(x, y));
-            t1 += average(r.strategyImages[2 * strategyIndex(4, 1) + 1].at(x, y));
+            s0 += average(r.strategies.at(0, 5, true).at(x, y));
+            t1 += average(r.strategies.at(4, 1, true).at(x, y));
         }
         double share = s0 / (s0 + t1);
         MESSAGE(std::string(deltaDensityOne ? "--delta-density-one" : "true densities") << ": s = 0 carries " << 100 * share << "% of L S S D E in the block, t = 1 "

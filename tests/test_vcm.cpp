@@ -156,8 +156,8 @@ TEST_CASE("vcm's merges alone estimate the direct light as next event does, on a
         RenderOptions o = quietOptions(Method::VCM, 64, 700 + k);
         o.strategyMaxLength = L;
         RenderResult r = render(scene, o);
-        const Image& merge = r.strategyImages[2 * mergeImageIndex(2, L)];
-        const Image& nee = r.strategyImages[2 * strategyIndex(1, 2)];
+        const Image& merge = r.strategies.merged(2, false);
+        const Image& nee = r.strategies.at(1, 2, false);
         for (int y = 24; y < 32; ++y)
             for (int x = 0; x < 32; ++x) merged += average(merge.at(x, y)), nextEvent += average(nee.at(x, y));
     }
@@ -221,15 +221,15 @@ TEST_CASE("vcm's MIS-weighted strategy and merge images add up to its image exac
     o.maxDepth = 2;           // paths of at most 3 segments ...
     o.strategyMaxLength = 3;  // ... all of them in the images
     RenderResult r = render(scene, o);
-    REQUIRE(r.strategyImages.size() == size_t(2 * (3 * 6 / 2 + 3)));
+    REQUIRE(r.strategies.images.size() == size_t(2 * (3 * 6 / 2 + 3)));
     double worst = 0, total = 0, merged = 0;
     for (int y = 0; y < 12; ++y)
         for (int x = 0; x < 12; ++x) {
             Vec3 sum(0);
             for (int k = 1; k <= 3; ++k) {
-                for (int s = 0; s <= k; ++s) sum += r.strategyImages[2 * strategyIndex(s, k + 1 - s) + 1].at(x, y);
-                sum += r.strategyImages[2 * mergeImageIndex(k, 3) + 1].at(x, y);
-                merged += average(r.strategyImages[2 * mergeImageIndex(k, 3) + 1].at(x, y));
+                for (int s = 0; s <= k; ++s) sum += r.strategies.at(s, k + 1 - s, true).at(x, y);
+                sum += r.strategies.merged(k, true).at(x, y);
+                merged += average(r.strategies.merged(k, true).at(x, y));
             }
             worst = std::max(worst, double(maxComponent(absVec(sum - r.image.at(x, y)))));
             total += average(r.image.at(x, y));

@@ -115,11 +115,8 @@ EMSCRIPTEN_KEEPALIVE double bdpt_rmse_without_lamp() { return gPanel.error.rmseW
 // The strategies recorded, "k s index;" each (s = k + 1: vcm's merges of length k), in the order
 // of the slides' pyramid; "" when the panel records none.
 EMSCRIPTEN_KEEPALIVE const char* bdpt_strategies() {
-    const RenderOptions& opt = gPanel.rendering->opt;
     std::ostringstream list;
-    if (opt.strategyMaxLength > 0)
-        forEachStrategyImage(opt.strategyMaxLength, opt.method == Method::VCM,
-                             [&](int k, int s, int index) { list << k << " " << s << " " << index << ";"; });
+    gPanel.rendering->film.strategies.forEach([&](int k, int s, int index) { list << k << " " << s << " " << index << ";"; });
     return returned(list.str());
 }
 
