@@ -828,29 +828,39 @@ enum class Roulette { Throughput, Albedo, Off };
 enum class Sampler { Sobol, Random };  // section 1: Owen-scrambled Sobol points, or PCG32 alone
 enum class Heuristic { Balance, Power, Max, Uniform };  // bdpt's MIS heuristics (its banner)
 
-// What a sample reads: the method and its parameters.
+// What a sample reads: the method and the parameters every method shares, then each later or
+// slide method's own, in a group named after it (opt.vcm.radius says whose it is).
+struct IrOptions {
+    int vplPaths = 16;         // light paths traced per pass, each leaving VPLs
+    float clamp = 0;           // > 0 bounds the geometry term G at this value (panel (e))
+};
+struct VcmOptions {
+    float radius = -1;         // r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
+    float alpha = 0.75f;       // r(n) = r_0 n^((alpha-1)/2) in pass n
+};
+struct MetropolisOptions {
+    float largeStep = 0.3f;    // pssmlt, mmlt: probability of a large step (every number afresh)
+    float sigma = 0.01f;       // pssmlt, mmlt: a small step's standard deviation, per number
+    int bootstrap = 0;         // samples that estimate b and choose the chains' starts (0: bootstrapSamples)
+    int chains = 0;            // Markov chains, each its own random stream (0: chainCount)
+    bool fixedStart = false;   // the deliberate mistake, every chain from one state
+    int mutations = 15;        // mlt: which of Veach's mutations run (bits: 1 bidirectional, 2 lens, 4 caustic, 8 multi-chain)
+    bool chainShortPaths = false;  // the chains render paths of 1 and 2 segments too (else a bdpt sample)
+};
 struct SampleOptions {
     Method method = Method::BDPT;
-    bool mis = false;          // nee: combine light and BSDF sampling (power heuristic)
     uint64_t seed = 1;
     int maxDepth = 32;         // bounces
     int rrStart = 3;           // Russian roulette from this many bounces on (Roulette::Throughput)
     Roulette roulette = Roulette::Albedo;  // how lt, ir and bdpt end their subpaths (pt, nee: Throughput)
-    int vplPaths = 16;         // ir: light paths traced per pass, each leaving VPLs
-    float clamp = 0;           // ir: > 0 bounds the geometry term G at this value
-    Heuristic heuristic = Heuristic::Balance;  // bdpt: how strategies are weighted
-    float mergeRadius = -1;    // vcm: r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
-    float alpha = 0.75f;       // vcm: r(n) = r_0 n^((alpha-1)/2) in pass n
-    float largeStep = 0.3f;    // pssmlt, mmlt: probability of a large step (every number afresh)
-    float sigma = 0.01f;       // pssmlt, mmlt: a small step's standard deviation, per number
-    int bootstrap = 0;         // Metropolis: samples that estimate b and choose the chains' starts (0: bootstrapSamples)
-    int chains = 0;            // Metropolis: Markov chains, each its own random stream (0: chainCount)
-    bool fixedStart = false;   // Metropolis: the deliberate mistake, every chain from one state
-    int mutations = 15;        // mlt: which of Veach's mutations run (bits: 1 bidirectional, 2 lens, 4 caustic, 8 multi-chain)
-    bool chainShortPaths = false;  // Metropolis: the chains render paths of 1 and 2 segments too (else a bdpt sample)
-    int minDepth = 0;          // bdpt's connections: paths of fewer bounces are left out (the chains' own, above)
     Sampler sampler = Sampler::Sobol;  // every pixel sample's numbers (section 1)
     bool noScramble = false;   // --no-scramble: the deliberate mistake, one point set for every pixel and pair
+    bool mis = false;          // nee: combine light and BSDF sampling (power heuristic)
+    IrOptions ir;
+    Heuristic heuristic = Heuristic::Balance;  // bdpt and the methods built on it: how strategies are weighted
+    int minDepth = 0;          // bdpt's connections: paths of fewer bounces are left out (the Metropolis chains' own)
+    VcmOptions vcm;
+    MetropolisOptions metropolis;
 };
 // What a run reads besides: how many passes, and on how many threads.
 struct RenderOptions : SampleOptions {
@@ -1298,13 +1308,13 @@ struct Vpl {
 inline std::vector<Vpl> traceVpls(const Scene& scene, const SampleOptions& opt, int pass) {
     std::vector<Vpl> vpls;
     std::vector<PathVertex> path;
-    for (int i = 0; i < opt.vplPaths; ++i) {
+    for (int i = 0; i < opt.ir.vplPaths; ++i) {
         Rng rng = sampleRng(opt, kVplStream, uint64_t(i), uint64_t(pass));
         lightSubpath(scene, opt, rng, path);
         for (size_t k = 0; k < path.size(); ++k) {
             if (!connectable(scene, path[k])) continue;
             vpls.push_back({path[k], int(k)});
-            vpls.back().y.beta = path[k].beta / float(opt.vplPaths);
+            vpls.back().y.beta = path[k].beta / float(opt.ir.vplPaths);
         }
     }
     return vpls;
@@ -1319,10 +1329,10 @@ inline Vec3 gatherVpls(const Scene& scene, const SampleOptions& opt, const std::
         evalConnection(scene, v.y, x, k);
         Vec3 c = connectVertices(v.y, x, k);
         if (isBlack(c) || !mutuallyVisible(scene, v.y, x)) continue;
-        if (opt.clamp > 0) {
+        if (opt.ir.clamp > 0) {
             float G = absDot(k.w, x.sp.ng) * cosAt(v.y, k.w) / k.dist2;
             double before = average(c);
-            if (G > opt.clamp) c *= opt.clamp / G;
+            if (G > opt.ir.clamp) c *= opt.ir.clamp / G;
             out.energyUnclamped += before;
             out.energyClamped += average(c);
         }
@@ -1675,8 +1685,8 @@ inline float defaultMergeRadius(const Scene& scene) {
 }
 
 inline float mergeRadius(const Scene& scene, const SampleOptions& opt, int pass) {  // r(n) = r_0 n^((alpha-1)/2), n = pass + 1
-    float r0 = opt.mergeRadius >= 0 ? opt.mergeRadius : defaultMergeRadius(scene);
-    return r0 * std::pow(float(pass + 1), (opt.alpha - 1) / 2);
+    float r0 = opt.vcm.radius >= 0 ? opt.vcm.radius : defaultMergeRadius(scene);
+    return r0 * std::pow(float(pass + 1), (opt.vcm.alpha - 1) / 2);
 }
 
 inline void traceVcmLightPass(const Scene& scene, const SampleOptions& opt, int pass, int threads, VcmPass& vp) {
@@ -1937,7 +1947,7 @@ inline bool proposeStep(const SampleOptions& opt, PrimarySampleChain& chain) {
     v.camera.values = u.camera.values;
     v.light.values = u.light.values;
     v.strategy.values = u.strategy.values;
-    bool large = chain.rng.uniform() < opt.largeStep;
+    bool large = chain.rng.uniform() < opt.metropolis.largeStep;
     if (large) {
         for (PrimaryStream* stream : {&v.camera, &v.light, &v.strategy}) stream->values.clear();  // afresh, when first used
         return true;
@@ -1947,7 +1957,7 @@ inline bool proposeStep(const SampleOptions& opt, PrimarySampleChain& chain) {
     for (PrimaryStream* stream : {&v.camera, &v.light, &v.strategy})
         for (float& x : stream->values) {
             if (left == 0) standardNormals(chain.rng, normal[0], normal[1]), left = 2;
-            x = smallStep(x, opt.sigma * normal[--left]);
+            x = smallStep(x, opt.metropolis.sigma * normal[--left]);
         }
     return false;
 }
@@ -2431,7 +2441,7 @@ inline int bitCount(int bits) { return (bits & 1) + (bits >> 1 & 1) + (bits >> 2
 
 // One proposal from x and its acceptance a(y|x), the choice of the mutation counted both ways.
 inline double mutate(const Scene& scene, const SampleOptions& walk, LengthRange r, const MutatedPath& x, Rng& rng, MutatedPath& y) {
-    const int applicable = applicableMutations(scene, x, walk.mutations), count = bitCount(applicable);
+    const int applicable = applicableMutations(scene, x, walk.metropolis.mutations), count = bitCount(applicable);
     if (count == 0) return 0;  // (tests run the perturbations alone)
     int pick = std::min(int(rng.uniform() * count), count - 1), bit = 1;
     for (;; bit <<= 1)
@@ -2442,7 +2452,7 @@ inline double mutate(const Scene& scene, const SampleOptions& walk, LengthRange 
                                          : multiChainPerturbation(scene, x, rng, y);
     y.mutation = bit;
     if (!(ratio > 0) || !std::isfinite(ratio)) return 0;
-    return std::min(1.0, ratio * count / bitCount(applicableMutations(scene, y, walk.mutations)));
+    return std::min(1.0, ratio * count / bitCount(applicableMutations(scene, y, walk.metropolis.mutations)));
 }
 
 // One of mlt's chains: its own random stream, its path and the one proposed from it.
@@ -2458,7 +2468,7 @@ struct PathChain {
 // seen) are bright and easy: a chain would spend most of its mutations there, where a bdpt sample
 // is better. A bdpt sample per pixel renders them and the chains the rest (Veach; pbrt-v2,
 // Mitsuba); --chain-short-paths gives the chains all lengths (notes, page 16).
-inline int shortestChainPath(const SampleOptions& opt) { return opt.chainShortPaths ? 1 : 3; }  // segments
+inline int shortestChainPath(const SampleOptions& opt) { return opt.metropolis.chainShortPaths ? 1 : 3; }  // segments
 
 // The chains' own samples: no shorter path, and no roulette where lengths are chosen (mmlt, mlt).
 inline SampleOptions chainOptions(const SampleOptions& opt) {
@@ -2486,12 +2496,12 @@ struct MetropolisPass {
 // and one that a single strategy finds (sds's lamp through glass, s = 0 only) needs tens of
 // thousands to be seen (notes, page 17).
 inline int bootstrapSamples(const SampleOptions& opt) {
-    return opt.bootstrap > 0 ? opt.bootstrap : opt.method == Method::PSSMLT ? 100000 : opt.method == Method::MLT ? 200000 : 1000000;
+    return opt.metropolis.bootstrap > 0 ? opt.metropolis.bootstrap : opt.method == Method::PSSMLT ? 100000 : opt.method == Method::MLT ? 200000 : 1000000;
 }
 // mlt's chains make one path's move each, where pssmlt's splat a whole bdpt sample: more and
 // shorter chains spread its starts (drawn as f) over the image (measured: 1,024 over 256 halves
 // the error on the glass scenes at 256 mutations per pixel; see the notes' Metropolis page).
-inline int chainCount(const SampleOptions& opt) { return opt.chains > 0 ? opt.chains : opt.method == Method::MLT ? 1024 : 256; }
+inline int chainCount(const SampleOptions& opt) { return opt.metropolis.chains > 0 ? opt.metropolis.chains : opt.method == Method::MLT ? 1024 : 256; }
 
 // Independent numbers, whatever --sampler: mmlt deals them to the lengths by index (every L-th Sobol point is uneven).
 inline Rng bootstrapRng(const SampleOptions& opt, int sample, int stream) {
@@ -2594,7 +2604,7 @@ inline void startPrimarySampleChains(const Scene& scene, const SampleOptions& op
         chain.rng = chainRng(opt, c);
         double pick;
         int i = length[c] + pickInProportion(cdf[length[c]], chain.rng.uniform(), pick) * lengths;
-        if (opt.fixedStart) i = firstLitSample(f);
+        if (opt.metropolis.fixedStart) i = firstLitSample(f);
         bootstrapSample(scene, opt, i, chain.current);
     }
 }
@@ -2711,7 +2721,7 @@ inline void startPathChains(const Scene& scene, const SampleOptions& opt, int th
         for (int attempt = 0; attempt < 16 && !(chain.current.f > 0); ++attempt) {
             double pick;
             int i = pickInProportion(cdf, chain.rng.uniform(), pick);
-            if (opt.fixedStart) i = firstLitSample(f);
+            if (opt.metropolis.fixedStart) i = firstLitSample(f);
             pathBootstrapSample(scene, opt, i, pick - (cdf[i] - f[i]), &chain.current);
         }
     }
@@ -2748,7 +2758,7 @@ inline SampleOptions shortPathOptions(const SampleOptions& opt) {
 // The Metropolis methods: the pixel's share of the chains' pass, and a bdpt sample of the short paths.
 inline Vec3 sampleMLT(const Scene& scene, const SampleOptions& opt, const PassData& pass, int x, int y, Rng& rng, RowOutput& out) {
     Vec3 chains = pass.metropolis->image[size_t(y) * scene.camera.width + x];
-    if (opt.chainShortPaths) return chains;
+    if (opt.metropolis.chainShortPaths) return chains;
     return chains + sampleBDPT(scene, pass.metropolis->shortPaths, pass, x, y, rng, out);
 }
 
@@ -3511,9 +3521,9 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
     {"--mis", "", {Method::NEE}, "--method nee", "nee: weight light and BSDF sampling with the power heuristic",
      [](CL& cl, A&) { cl.opt.mis = true; }},
     {"--vpls", "N", {Method::IR}, "--method ir", "ir: light paths traced per pass, each leaving VPLs (default 16)",
-     [](CL& cl, A& a) { cl.opt.vplPaths = int(a.integer(1, 1e6)); }},
+     [](CL& cl, A& a) { cl.opt.ir.vplPaths = int(a.integer(1, 1e6)); }},
     {"--clamp", "C", {Method::IR}, "--method ir", "ir: bound the geometry term G by C (panel (e)); prints the energy removed",
-     [](CL& cl, A& a) { cl.opt.clamp = float(a.number(1e-30, 1e30)); }},
+     [](CL& cl, A& a) { cl.opt.ir.clamp = float(a.number(1e-30, 1e30)); }},
     {"--heuristic", "H", kBdptFamily, kBdptFamilyName, "bdpt, vcm, and the Metropolis methods' bdpt samples: MIS weights balance\n"
      "(default), power, max (the slides' maximum heuristic) or uniform (1 /\nnumber of strategies able to make the path)",
      [](CL& cl, A& a) { cl.opt.heuristic = a.choice<Heuristic>("heuristic", kHeuristicNames); }},
@@ -3522,9 +3532,9 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      "vcm keeps a pass's light subpaths, about 140 bytes per light vertex (the\n"
      "vertex, and a grid record if mergeable), 1 to 6 light vertices per pixel on\n"
      "the scenes: the summary line reports both",
-     [](CL& cl, A& a) { cl.opt.mergeRadius = float(a.number(0, 1e30)); }},
+     [](CL& cl, A& a) { cl.opt.vcm.radius = float(a.number(0, 1e30)); }},
     {"--alpha", "A", {Method::VCM}, "--method vcm", "vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1\n(default 0.75)",
-     [](CL& cl, A& a) { cl.opt.alpha = float(a.number(1e-3, 1)); }},
+     [](CL& cl, A& a) { cl.opt.vcm.alpha = float(a.number(1e-3, 1)); }},
     {"--strategies", "DIR", {Method::BDPT, Method::VCM}, "--method bdpt and vcm", "bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length\n"
      "(vcm: and one of all merges per path length), unweighted and MIS-weighted,\n"
      "and two pyramid montages, into DIR (each pyramid row brightened by the\n"
@@ -3533,21 +3543,21 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
     {"--strategy-length", "K", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)",
      "longest path (segments) with per-strategy images (default 5)", [](CL& cl, A& a) { cl.strategyLength = int(a.integer(1, 12)); }},
     {"--large-step", "P", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: probability of a large step, every number drawn afresh (0.3)",
-     [](CL& cl, A& a) { cl.opt.largeStep = float(a.number(0, 1)); }},
+     [](CL& cl, A& a) { cl.opt.metropolis.largeStep = float(a.number(0, 1)); }},
     {"--sigma", "S", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: a small step moves each number by a normal of deviation S,\nwrapped into [0,1) (default 0.01)",
-     [](CL& cl, A& a) { cl.opt.sigma = float(a.number(1e-6, 10)); }},
+     [](CL& cl, A& a) { cl.opt.metropolis.sigma = float(a.number(1e-6, 10)); }},
     {"--bootstrap", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: independent samples that estimate the image's\n"
      "normalisation b and choose the chains' starts in proportion to their\n"
      "brightness (default 100000 for pssmlt, 200000 for mlt, 1000000 for mmlt,\nwhich spreads them over the path lengths)",
-     [](CL& cl, A& a) { cl.opt.bootstrap = int(a.integer(1, 1e8)); }},
+     [](CL& cl, A& a) { cl.opt.metropolis.bootstrap = int(a.integer(1, 1e8)); }},
     {"--chains", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: Markov chains, each its own random stream (default 1024 for mlt, 256 otherwise)",
-     [](CL& cl, A& a) { cl.opt.chains = int(a.integer(1, 1e6)); }},
+     [](CL& cl, A& a) { cl.opt.metropolis.chains = int(a.integer(1, 1e6)); }},
     {"--mutations", "LIST", {Method::MLT}, "--method mlt", "mlt: Veach's mutations to use, among bidir, lens, caustic and multichain,\n"
      "comma-separated; bidir is always among them (default: all four)",
-     [](CL& cl, A& a) { cl.opt.mutations = a.mutationList(); }},
+     [](CL& cl, A& a) { cl.opt.metropolis.mutations = a.mutationList(); }},
     {"--chain-short-paths", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: the chains render paths of one and two segments too\n"
      "(by default a bdpt sample per pixel renders them, and the chains the rest)",
-     [](CL& cl, A&) { cl.opt.chainShortPaths = true; }},
+     [](CL& cl, A&) { cl.opt.metropolis.chainShortPaths = true; }},
     {"--maxdepth", "D", {}, "", "at most D bounces (scattering vertices) per path (default 32)",
      [](CL& cl, A& a) { cl.opt.maxDepth = int(a.integer(0, 10000)); }},
     {"--roulette", "R", kLightPathMethods, kLightPathName, "lt, ir, bdpt, vcm and the Metropolis methods' bdpt samples (mlt's and\n"
@@ -3574,7 +3584,7 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
     {"--fixed-start", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: every chain starts from one fixed state (the first bootstrap\n"
      "sample that carries light) instead of one chosen in proportion to its\n"
      "brightness: start-up bias, visible at short runs",
-     [](CL& cl, A&) { cl.opt.fixedStart = true; }},
+     [](CL& cl, A&) { cl.opt.metropolis.fixedStart = true; }},
     {"--no-scramble", "", {}, "", "--sampler sobol without its random scrambles: every pixel draws the same\n"
      "point in each pass, so neighbouring pixels' film positions, bounces and\n"
      "lamp points move together (a biased, patterned image)",
@@ -3733,8 +3743,8 @@ inline std::string methodSummary(const SampleOptions& opt, const RenderResult& r
         }
         s += " (a proposal that could not be made counts as refused)\n";
     }
-    if (opt.method == Method::IR && opt.clamp > 0) {
-        std::snprintf(text, sizeof text, "clamp %g removed %g%% of the energy gathered from VPLs\n", opt.clamp, 100 * r.clampRemoved());
+    if (opt.method == Method::IR && opt.ir.clamp > 0) {
+        std::snprintf(text, sizeof text, "clamp %g removed %g%% of the energy gathered from VPLs\n", opt.ir.clamp, 100 * r.clampRemoved());
         s += text;
     }
     return s;

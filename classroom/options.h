@@ -183,10 +183,10 @@ inline ClassroomLine parseCommandLine(const std::vector<std::string>& args) {
 inline std::string optionsLabel(const RenderOptions& o) {  // what distinguishes a run in the charts
     std::ostringstream s;
     if (o.method == Method::NEE && o.mis) s << "--mis ";
-    if (o.method == Method::IR) s << "--vpls " << o.vplPaths << (o.clamp > 0 ? " --clamp " : "") << (o.clamp > 0 ? std::to_string(o.clamp) : "") << " ";
+    if (o.method == Method::IR) s << "--vpls " << o.ir.vplPaths << (o.ir.clamp > 0 ? " --clamp " : "") << (o.ir.clamp > 0 ? std::to_string(o.ir.clamp) : "") << " ";
     if (o.method == Method::BDPT || o.method == Method::VCM) s << "--heuristic " << kHeuristicNames[int(o.heuristic)] << " ";
-    if (o.method == Method::VCM) s << "--alpha " << o.alpha << " ";
-    if (isMetropolis(o.method) && o.fixedStart) s << "--fixed-start ";
+    if (o.method == Method::VCM) s << "--alpha " << o.vcm.alpha << " ";
+    if (isMetropolis(o.method) && o.metropolis.fixedStart) s << "--fixed-start ";
     if (o.sampler != Sampler::Sobol) s << "--sampler " << kSamplerNames[int(o.sampler)] << " ";
     if (o.noScramble) s << "--no-scramble ";
     if (o.maxDepth != 32) s << "--maxdepth " << o.maxDepth;

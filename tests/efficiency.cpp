@@ -125,8 +125,8 @@ static int metropolis(int seeds, const std::vector<std::string>& scenes, const s
         {"mlt", with(Method::MLT)},
         {"pssmlt", with(Method::PSSMLT)},
         {"mmlt", with(Method::MMLT)},
-        {"pssmlt --chain-short-paths", with(Method::PSSMLT, [](RenderOptions& o) { o.chainShortPaths = true; })},
-        {"mmlt --chain-short-paths", with(Method::MMLT, [](RenderOptions& o) { o.chainShortPaths = true; })},
+        {"pssmlt --chain-short-paths", with(Method::PSSMLT, [](RenderOptions& o) { o.metropolis.chainShortPaths = true; })},
+        {"mmlt --chain-short-paths", with(Method::MMLT, [](RenderOptions& o) { o.metropolis.chainShortPaths = true; })},
     };
     if (!only.empty())  // bdpt, the yardstick, and the variants whose label contains `only`
         runs.erase(std::remove_if(runs.begin() + 1, runs.end(), [&](const Variant& v) { return !selected(v.label, only); }),

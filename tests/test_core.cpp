@@ -95,7 +95,7 @@ TEST_CASE("furnace: L = Le / (1 - a) = 2 within 1% for every method; truncated a
                     Run{Method::MMLT, false}, Run{Method::MLT, false}}) {
         RenderOptions o = quietOptions(run.m, 64);
         o.mis = run.mis;  // nee --mis: a light density without the light's cosine gave 2.19
-        o.bootstrap = run.m == Method::MMLT ? 200000 : 20000;  // pssmlt's image mean is its b: the bootstrap's and the large steps'
+        o.metropolis.bootstrap = run.m == Method::MMLT ? 200000 : 20000;  // pssmlt's image mean is its b: the bootstrap's and the large steps'
         RenderResult r = render(scene, o);
         CAPTURE(int(run.m));
         CAPTURE(run.mis);

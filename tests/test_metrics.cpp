@@ -263,7 +263,7 @@ TEST_CASE("ir: the clamp's bias does not shrink with passes; unclamped ir has mo
     Scene scene = sceneAt("scenes/cornell.scene", 24, 24);
     Image ref = render(scene, quietOptions(Method::BDPT, 1024, 8)).image;
     RenderOptions clamped = quietOptions(Method::IR, 1, 9), unclamped = clamped;
-    clamped.clamp = 1e-5f;
+    clamped.ir.clamp = 1e-5f;
     std::vector<ErrorMetrics> c = errorsAt(scene, clamped, ref, {64, 512});
     std::vector<ErrorMetrics> u = errorsAt(scene, unclamped, ref, {64, 512});
     CHECK(c[0].bias < -0.015);

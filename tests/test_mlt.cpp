@@ -28,8 +28,8 @@ struct TargetRun {
 TargetRun runOnTarget(float largeStep, float sigma, float (*accept)(float, float), uint64_t seed) {
     constexpr int kBins = 8, kSteps = 200000, kThin = 10;
     RenderOptions opt;
-    opt.largeStep = largeStep;
-    opt.sigma = sigma;
+    opt.metropolis.largeStep = largeStep;
+    opt.metropolis.sigma = sigma;
     PrimarySampleChain chain;
     chain.rng = makeRng(seed, 0, 0);
     auto evaluate = [&](PrimarySampleState& u) {
@@ -108,8 +108,8 @@ TEST_CASE("replaying a state gives its contribution bit for bit; a rejected prop
     Scene scene = sceneAt("scenes/cornell-glass.scene", 32, 32);
     for (Method method : {Method::PSSMLT, Method::MMLT}) {
         RenderOptions opt = quietOptions(method, 1);
-        opt.bootstrap = 2000;
-        opt.chains = 4;
+        opt.metropolis.bootstrap = 2000;
+        opt.metropolis.chains = 4;
         MetropolisPass mp;
         startPrimarySampleChains(scene, opt, 1, mp);
         REQUIRE(mp.b > 0);
@@ -157,8 +157,8 @@ TEST_CASE("mlt, pssmlt and mmlt agree with the references region by region, over
         for (Method method : {Method::MLT, Method::PSSMLT, Method::MMLT}) {
             if (c.spp[method == Method::MLT ? 0 : method == Method::PSSMLT ? 1 : 2] == 0) continue;
             RenderOptions opt = quietOptions(method, c.spp[method == Method::MLT ? 0 : method == Method::PSSMLT ? 1 : 2]);
-            opt.bootstrap = method == Method::MMLT ? 100000 : 20000;
-            opt.chains = 256;
+            opt.metropolis.bootstrap = method == Method::MMLT ? 100000 : 20000;
+            opt.metropolis.chains = 256;
             RegionEstimate e = overSeeds(scene, opt, 4, 8);
             double chi = chiSquare(e, ref);
             std::vector<double> relError;
@@ -180,8 +180,8 @@ TEST_CASE("the bootstrap's b is the image's luminance mean; starting every chain
     for (const Vec3& p : ref.pixels) refLuminance += luminance(p);
     refLuminance /= ref.pixels.size();
     RenderOptions opt = quietOptions(Method::PSSMLT, 1);
-    opt.bootstrap = 20000;
-    opt.chainShortPaths = true;  // b is then the whole image's
+    opt.metropolis.bootstrap = 20000;
+    opt.metropolis.chainShortPaths = true;  // b is then the whole image's
     RenderResult r = render(scene, opt);
     MESSAGE("b = " << r.method.metropolis.b << " +- " << r.method.metropolis.bStandardError << ", reference " << refLuminance);
     CHECK(std::fabs(r.method.metropolis.b - refLuminance) < 4 * r.method.metropolis.bStandardError);
@@ -198,9 +198,9 @@ TEST_CASE("the bootstrap's b is the image's luminance mean; starting every chain
     // At one mutation per pixel (16 per chain) chains have not left their start: from the
     // bootstrap they are spread as f is, from one state they are all in one place.
     RegionEstimate reference = referenceRegions("door", 4);
-    opt.chains = 256;
+    opt.metropolis.chains = 256;
     double unbiased = chiSquare(overSeeds(scene, opt, 4, 12), reference);
-    opt.fixedStart = true;
+    opt.metropolis.fixedStart = true;
     double fixed = chiSquare(overSeeds(scene, opt, 4, 12), reference);
     MESSAGE("one mutation per pixel, chi-square over 16 regions: bootstrap starts " << unbiased << ", one fixed start " << fixed);
     CHECK(unbiased < 60);
@@ -211,8 +211,8 @@ TEST_CASE("mlt, pssmlt and mmlt give the same image for 1 and 3 threads") {
     Scene scene = sceneAt("scenes/cornell-glass.scene", 24, 24);
     for (Method method : {Method::MLT, Method::PSSMLT, Method::MMLT}) {
         RenderOptions opt = quietOptions(method, 3);
-        opt.bootstrap = 3000;
-        opt.chains = 17;  // not a multiple of either
+        opt.metropolis.bootstrap = 3000;
+        opt.metropolis.chains = 17;  // not a multiple of either
         opt.threads = 1;
         Image one = render(scene, opt).image;
         opt.threads = 3;
@@ -232,7 +232,7 @@ TEST_CASE("on a non-square image mlt, pssmlt and mmlt agree with bdpt region by 
     RegionEstimate bdpt = renderRegions(scene, quietOptions(Method::BDPT, 512, 5), 4);
     for (Method method : {Method::MLT, Method::PSSMLT, Method::MMLT}) {
         RenderOptions opt = quietOptions(method, method == Method::MMLT ? 64 : 16);
-        opt.bootstrap = method == Method::MMLT ? 100000 : 20000;
+        opt.metropolis.bootstrap = method == Method::MMLT ? 100000 : 20000;
         RegionEstimate e = overSeeds(scene, opt, 4, 8);
         double chi = 0;
         for (size_t r = 0; r < e.mean.size(); ++r) chi += sqr(e.mean[r] - bdpt.mean[r]) / (sqr(e.stdError[r]) + sqr(bdpt.stdError[r]));
@@ -251,8 +251,8 @@ TEST_CASE("a pass makes exactly W H mutations whatever the number of chains") {
     for (Method method : {Method::MLT, Method::PSSMLT, Method::MMLT})
         for (int chains : {1, 7, 1000, 1536, 2000}) {
             RenderOptions opt = quietOptions(method, 3);
-            opt.bootstrap = 5000;
-            opt.chains = chains;
+            opt.metropolis.bootstrap = 5000;
+            opt.metropolis.chains = chains;
             RenderResult r = render(scene, opt);
             CAPTURE(chains);
             long long proposed = 0, idle = 0;

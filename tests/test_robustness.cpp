@@ -95,7 +95,7 @@ TEST_CASE("mlt gives no non-finite sample on any committed scene, shading-normal
     long long dropped = 0;
     for (int seed = 1; seed <= 4; ++seed) {
         RenderOptions o = quietOptions(Method::MLT, 16, seed);
-        o.bootstrap = 20000;
+        o.metropolis.bootstrap = 20000;
         dropped += render(sceneAt("scenes/shading-normals.scene", 32, 32), o).nonFinite;
     }
     CHECK(dropped == 0);
@@ -112,7 +112,7 @@ TEST_CASE("mlt gives no non-finite sample on any committed scene, shading-normal
             CAPTURE(file);
             CAPTURE(int(m));
             RenderOptions o = quietOptions(m, 8, 3);
-            o.bootstrap = 20000;
+            o.metropolis.bootstrap = 20000;
             RenderResult r = render(sceneAt(file, 32, 32), o);
             CHECK(r.nonFinite == 0);
             bool finite = true;

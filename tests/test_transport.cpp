@@ -199,7 +199,7 @@ TEST_CASE("ir: unclamped converges to nee; clamped loses energy, and more passes
     RenderOptions o = quietOptions(Method::IR, 1024, 52);
     RegionEstimate ir = renderRegions(scene, o, 2);
     CHECK(maxZ(nee, ir) < 4.5);
-    o.clamp = 1e-5f;  // G in mm^-2: clamps VPLs closer than about 30 cm
+    o.ir.clamp = 1e-5f;  // G in mm^-2: clamps VPLs closer than about 30 cm
     RenderResult clamped;
     RegionEstimate irc = renderRegions(scene, o, 2, &clamped);
     double bias1024 = (nee.mean.back() - irc.mean.back()) / nee.mean.back();
@@ -220,7 +220,7 @@ TEST_CASE("ir --clamp removes exactly the energy above min(G, C), G with both co
     Scene scene = sceneAt("scenes/cornell.scene", 24, 24);
     const int W = scene.camera.width, H = scene.camera.height;
     RenderOptions o = quietOptions(Method::IR, 1, 9);
-    o.clamp = 1e-5f;
+    o.ir.clamp = 1e-5f;
     o.threads = 1;
     RenderResult r = render(scene, o);
     std::vector<Vpl> vpls = traceVpls(scene, o, 0);
@@ -245,7 +245,7 @@ TEST_CASE("ir --clamp removes exactly the energy above min(G, C), G with both co
                 double cosY = v.y.type == PathVertex::Light && v.y.deltaPosition ? 1 : std::fabs(dot(v.y.sp.ng, d)) / std::sqrt(dist2);
                 double G = cosX * cosY / dist2;
                 before += average(c);
-                after += average(c) * std::min(1.0, o.clamp / G);
+                after += average(c) * std::min(1.0, o.ir.clamp / G);
             }
         }
     double share = 1 - after / before;

@@ -64,10 +64,10 @@ TEST_CASE("hash grid: a point on a cell border is found from both sides") {
 TEST_CASE("vcm --radius 0 gives bdpt's image bit for bit, and vcm is deterministic for any thread count") {
     Scene scene = sceneAt("scenes/cornell-glass.scene", 24, 24);
     RenderOptions b = quietOptions(Method::BDPT, 4, 5), v = quietOptions(Method::VCM, 4, 5);
-    v.mergeRadius = 0;
+    v.vcm.radius = 0;
     RenderResult rb = render(scene, b), rv = render(scene, v);
     CHECK(std::memcmp(rb.image.pixels.data(), rv.image.pixels.data(), rb.image.pixels.size() * sizeof(Vec3)) == 0);
-    v.mergeRadius = -1;  // the default radius: merges change the image
+    v.vcm.radius = -1;  // the default radius: merges change the image
     RenderResult rm = render(scene, v);
     CHECK(std::memcmp(rb.image.pixels.data(), rm.image.pixels.data(), rb.image.pixels.size() * sizeof(Vec3)) != 0);
     CHECK(rm.method.vcm.stored.size() > 0);
@@ -82,9 +82,9 @@ TEST_CASE("vcm equals bdpt region by region on cornell and indirect") {
     for (const char* file : {"scenes/cornell.scene", "scenes/indirect.scene"}) {
         CAPTURE(file);
         RenderOptions o = quietOptions(Method::VCM, 256, 71);
-        o.mergeRadius = defaultMergeRadius(loadScene(file));
+        o.vcm.radius = defaultMergeRadius(loadScene(file));
         Scene scene = sceneAt(file, 32, 32);
-        CHECK(o.mergeRadius < 0.2f * defaultMergeRadius(scene));
+        CHECK(o.vcm.radius < 0.2f * defaultMergeRadius(scene));
         RegionEstimate vcm = renderRegions(scene, o, 4);
         RegionEstimate bdpt = renderRegions(scene, quietOptions(Method::BDPT, 256, 72), 4);
         CHECK(maxZ(vcm, bdpt) < 4.5);
@@ -128,8 +128,8 @@ TEST_CASE("sds-ior1: vcm converges to the room without the balls, bdpt misses th
     for (int i = 0; i < 2; ++i) {
         // r_0's bias is steady at 256 passes (+0.30% to +0.38% over 4 seeds); r_0/4's noise needs 512.
         RenderOptions o = quietOptions(Method::VCM, i ? 512 : 256, 1);
-        o.alpha = 1;  // r_i = r_0 in every pass
-        o.mergeRadius = defaultMergeRadius(balls) / (i ? 4 : 1);
+        o.vcm.alpha = 1;  // r_i = r_0 in every pass
+        o.vcm.radius = defaultMergeRadius(balls) / (i ? 4 : 1);
         fixedRadiusBias[i] = compareToReference(render(balls, o).image, reference).bias;
     }
     MESSAGE("vcm at a fixed radius r_0: bias " << fixedRadiusBias[0] << ", r_0/4: " << fixedRadiusBias[1]);
@@ -176,10 +176,10 @@ TEST_CASE("vcm's merges alone estimate the direct light as next event does, on a
 TEST_CASE("the radius schedule r_i = r_0 i^((alpha-1)/2), and each light pass divides by pi r_i^2 N with its own r_i") {
     Scene scene = sceneAt("scenes/cornell.scene", 16, 12);
     RenderOptions o = quietOptions(Method::VCM, 1);
-    o.mergeRadius = 20;
+    o.vcm.radius = 20;
     for (float alpha : {0.75f, 0.5f, 1.0f}) {
         CAPTURE(alpha);
-        o.alpha = alpha;
+        o.vcm.alpha = alpha;
         VcmPass vp;
         for (int pass = 0; pass < 16; ++pass) {
             CAPTURE(pass);
@@ -206,8 +206,8 @@ TEST_CASE("vcm with every heuristic gives Le/(1-a) = 2 in the furnace at a fixed
         CAPTURE(int(h));
         RenderOptions o = quietOptions(Method::VCM, 64, 41);
         o.heuristic = h;
-        o.mergeRadius = 0.1f;
-        o.alpha = 1;
+        o.vcm.radius = 0.1f;
+        o.vcm.alpha = 1;
         RenderResult r = render(scene, o);
         CHECK(r.method.vcm.stored.size() > 0);
         CHECK(imageMean(r.image) == doctest::Approx(2.0).epsilon(0.005));

@@ -24,7 +24,7 @@ TEST_CASE("a path's f and densities are the same from every strategy that can ma
     for (std::string name : {"cornell-glass", "glass-box", "cornell-point"}) {
         Scene scene = sceneAt("scenes/" + name + ".scene", 32, 32);
         RenderOptions opt = quietOptions(Method::MLT, 1);
-        opt.chainShortPaths = true;
+        opt.metropolis.chainShortPaths = true;
         std::vector<MutatedPath> starts = startPaths(scene, opt, 300);
         std::vector<PathVertex> light, camera;
         int compared = 0, agree = 0, specular = 0;
@@ -62,7 +62,7 @@ struct MutationOptions {
 };
 static MutationOptions mutationOptions(int maxDepth) {
     RenderOptions opt = quietOptions(Method::MLT, 1);
-    opt.chainShortPaths = true;
+    opt.metropolis.chainShortPaths = true;
     opt.maxDepth = maxDepth;
     return {opt, chainOptions(opt), LengthRange{1, maxDepth + 1}};
 }
@@ -255,7 +255,7 @@ TEST_CASE("the lens and caustic perturbations' acceptance is that of their moves
     Scene scene = sceneAt("scenes/cornell.scene", 32, 32);
     const Camera& cam = scene.camera;
     RenderOptions opt = quietOptions(Method::MLT, 1);
-    opt.chainShortPaths = true;
+    opt.metropolis.chainShortPaths = true;
     std::vector<MutatedPath> starts = startPaths(scene, opt, 400);
     REQUIRE(starts.size() == 400);
     Rng rng = makeRng(9, 0, 0);
@@ -356,10 +356,10 @@ TEST_CASE("the lens and caustic perturbations alone keep f stationary through mi
     RegionEstimate ref = referenceRegions("cornell-glass", 4);
     for (int bit : {int(kLens), int(kCaustic)}) {
         RenderOptions opt = quietOptions(Method::MLT, 256);
-        opt.mutations = bit;
-        opt.chainShortPaths = true;
-        opt.bootstrap = 20000;
-        opt.chains = 64;
+        opt.metropolis.mutations = bit;
+        opt.metropolis.chainShortPaths = true;
+        opt.metropolis.bootstrap = 20000;
+        opt.metropolis.chains = 64;
         double chi = chiSquare(chainRegions(scene, opt, 4, 8), ref);
         MESSAGE(std::string(bit == kLens ? "lens" : "caustic") << " alone: chi-square over 16 regions " << chi);
         CHECK(chi < 100);  // about 22 +- 11 when unbiased (8 seeds)
@@ -413,7 +413,7 @@ static double multiChainTarget(const Scene& scene, const MutatedPath& p, int end
 TEST_CASE("the multi-chain perturbation's acceptance is that of its moves on the film and the spheres of directions") {
     Scene scene = sceneAt("scenes/cornell-glass.scene", 32, 32);
     RenderOptions opt = quietOptions(Method::MLT, 1);
-    opt.chainShortPaths = true;
+    opt.metropolis.chainShortPaths = true;
     std::vector<MutatedPath> starts;
     for (const MutatedPath& x : startPaths(scene, opt, 4000))
         if (multiChainEnd(scene, x) >= 0) starts.push_back(x);
@@ -450,7 +450,7 @@ TEST_CASE("the multi-chain perturbation's acceptance is that of its moves on the
 TEST_CASE("the multi-chain perturbation's turns follow Veach's range: 1e-4 to 0.1 degrees, density 1/theta") {
     Scene scene = sceneAt("scenes/cornell-glass.scene", 32, 32);
     RenderOptions opt = quietOptions(Method::MLT, 1);
-    opt.chainShortPaths = true;
+    opt.metropolis.chainShortPaths = true;
     Rng rng = makeRng(12, 0, 0);
     std::vector<double> log10Degrees;
     for (const MutatedPath& x : startPaths(scene, opt, 4000)) {
@@ -492,7 +492,7 @@ TEST_CASE("the multi-chain perturbation's turns follow Veach's range: 1e-4 to 0.
 TEST_CASE("mlt's f through glass carries F where the path reflects and 1 - F where it refracts") {
     Scene scene = sceneAt("scenes/cornell-glass.scene", 32, 32);
     RenderOptions opt = quietOptions(Method::MLT, 1);
-    opt.chainShortPaths = true;
+    opt.metropolis.chainShortPaths = true;
     int glass = 0, refracted = 0, agree = 0;
     for (const MutatedPath& x : startPaths(scene, opt, 400))
         for (int i = 1; i < x.k(); ++i) {

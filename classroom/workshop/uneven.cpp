@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
                     o.threads = 1;
             o.seconds = seconds;
             o.seed = uint64_t(seed);
-            if (o.method != Method::PSSMLT) o.bootstrap = 100000;  // mlt's and mmlt's default, 1,000,000, would take most of a 2 s run
+            if (o.method != Method::PSSMLT) o.metropolis.bootstrap = 100000;  // mlt's and mmlt's default, 1,000,000, would take most of a 2 s run
             RenderResult r = render(scene, o);
             passes[m] += r.passes;
             for (int y = 0; y < H; ++y)
