@@ -247,8 +247,8 @@ inline std::vector<unsigned char> pyramidCanvas(const StrategyImages& strategies
                       layout.scale);
     });
     const std::string title[2] = {
-        weighted ? "Contributions of different paths, MIS-weighted: w_{s,t} C*_{s,t}; each row k sums to the paths of k segments"
-                 : "Contributions of different paths, unweighted: C*_{s,t} alone; each tile of row k estimates all of it",
+        weighted ? "Contributions of different paths, MIS-weighted: w_{s,t} <C_{s,t}>; each row k sums to the paths of k segments"
+                 : "Contributions of different paths, unweighted: <C_{s,t}> alone; each tile of row k estimates all of it",
         "row k: path length; s vertices from the light, t from the eye; \"+N\": the row brightened N stops to be seen"};
     for (int line = 0; line < 2; ++line) {
         const int scale = std::max(1, std::min(layout.scale, (layout.canvasW - 8) / std::max(1, labelWidth(title[line], 1))));

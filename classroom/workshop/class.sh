@@ -6,7 +6,7 @@
 #   pyramid.png                bdpt's strategies p_{k,s}, row k = path length, s light vertices
 #   mistake-*.png              the six deliberate mistakes: right, mistaken, their ratio, the factor named
 #   sds-merging.png            sds-point: bdpt cannot reach L S D S E, vcm's merging can
-#   metropolis.png             door-hidden: bdpt against Metropolis (mlt) at equal time, with RMSE
+#   metropolis.png             door-hidden: bdpt against Metropolis (mlt) at equal time, the ratio of their squared errors
 #   error-vs-time-*.png        error against time, at most six methods a chart, one colour each
 # Each comparison a titled 16:9 figure (1920x1080), the slides' captions under their images.
 # About 6.5 minutes of CPU, 4.5 on an idle 2-core machine (CLASS_SECONDS=S, default 20, sets the
@@ -37,7 +37,7 @@ step "sds-point: bdpt against vcm's merging ($T CPU s each)"
   --title "L S D S E: a point light's caustic seen through glass: bdpt has no strategy for it, vcm merges"
 step "door-hidden: bdpt against mlt ($T CPU s each, RMSE against the reference)"
 ./bdpt scenes/door-hidden.scene --side-by-side "bdpt,mlt" --time "$T" --res 128x128 --ref scenes/refs/door-hidden.pfm --quiet \
-  --out "$OUT/metropolis.png" --title "Light through a door ajar: Veach's Metropolis against bdpt"
+  --ratio-panel error --out "$OUT/metropolis.png" --title "Light through a door ajar: Veach's Metropolis against bdpt"
 
 # A deliberate mistake: right and mistaken side by side at the same samples, and the mistaken over
 # the right in blocks (grey where the difference is within the noise), the factor in the title.
