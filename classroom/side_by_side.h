@@ -147,9 +147,19 @@ inline std::string threeDigits(double x) {
     return text;
 }
 
+// Whether the second of a ratio panel's entries is the first with a deliberate mistake (the
+// panels are then "right" and "deliberate mistake"), not another method.
+inline bool comparesDeliberateMistake(const std::vector<std::unique_ptr<SideBySidePanel>>& panels) {
+    for (const char* flag : {"--symmetric-refraction", "--no-adjoint-correction", "--fixed-ray-offset", "--delta-density-one", "--fixed-start",
+                             "--no-scramble"})
+        if (panels.size() == 2 && panels[1]->label.find(flag) != std::string::npos) return true;
+    return false;
+}
+
 inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const Image& ref,
                                                   const SideBySideLayout& L, const std::vector<std::string>& title, const std::string& ratioKind) {
     std::vector<unsigned char> canvas(size_t(L.canvasW) * L.canvasH * 3, 24);
+    const bool comparesMistake = comparesDeliberateMistake(panels);
     auto caption = [&](int tile, int line, const std::string& text) {
         drawLabel(canvas, L.canvasW, L.canvasH, L.tileX(tile), L.tileY(tile) + L.panelH + L.gap / 2 + line * 7 * L.scale, text, L.scale);
     };
@@ -160,7 +170,7 @@ inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<Si
         double seconds;
         panelMean(panel, mean, nullptr, passes, seconds);
         blitZoomed(canvas, L.canvasW, toSRGBBytes(mean, panel.cl.exposure), L.W, L.H, L.zoom, L.tileX(int(i)), L.tileY(int(i)));
-        const std::string slide = !ratioKind.empty() ? (i == 0 ? "right" : "deliberate mistake") : slideCaption(panel.label);
+        const std::string slide = !ratioKind.empty() && comparesMistake ? (i == 0 ? "right" : "deliberate mistake") : slideCaption(panel.label);
         std::string counts = passes > 0 ? std::to_string(passes) + " spp, " + threeDigits(seconds) + " CPU s" : "starting";
         caption(int(i), 0, slide.empty() ? panel.label : slide);
         caption(int(i), 1, slide.empty() ? counts : panel.label + ": " + counts);
@@ -179,7 +189,7 @@ inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<Si
         } else {
             caption(t, 0, "mean: " + division);
             caption(t, 1, "blue 1/2 - white 1 - red 2");
-            caption(t, 2, "grey: within the noise");
+            caption(t, 2, "grey: within the noise; dark: black in both");
             lines.push_back(division + " = " + threeDigits(r.overall) + " on average");
         }
     }

@@ -48,11 +48,11 @@ for ours in ("bdpt", "bdpt-native"):
             print("%-36s build %.1f ms vs %s ms" % (" ".join(o[1:]), med[o + ("build_ms",)],
                   "%.1f" % med[e + ("build_ms",)] if (e + ("build_ms",)) in med else "-"))
 PY
-echo "== cost per sample, bdpt / nee on scenes/cornell.scene (32 spp, all threads, interleaved $runs times)"
+echo "== cost per sample, bdpt / nee on scenes/cornell.scene (32 spp, all threads, CPU seconds, interleaved $runs times)"
 for i in $(seq "$runs"); do
   for m in nee bdpt; do
     ./bdpt scenes/cornell.scene --method $m --spp 32 --out "$out/cost.png" |
-      sed -n "s/.* in \([0-9.e+-]*\) s.*, \([0-9.]*\) rays per sample.*/$m \1 \2/p"
+      sed -n "s/.* s (\([0-9.e+-]*\) CPU s).*, \([0-9.]*\) rays per sample.*/$m \1 \2/p"
   done
 done > "$out/cost.txt"
 python3 - "$out/cost.txt" <<'PY'
@@ -62,7 +62,7 @@ for line in open(sys.argv[1]):
     m, s, r = line.split()
     t.setdefault(m, []).append(float(s))
     rays[m] = float(r)
-print("rays per sample: nee %.2f, bdpt %.2f (%.2fx); median seconds nee %.2f, bdpt %.2f: %.2fx" % (rays["nee"], rays["bdpt"],
+print("rays per sample: nee %.2f, bdpt %.2f (%.2fx); median CPU seconds nee %.2f, bdpt %.2f: %.2fx" % (rays["nee"], rays["bdpt"],
       rays["bdpt"] / rays["nee"], statistics.median(t["nee"]), statistics.median(t["bdpt"]),
       statistics.median(t["bdpt"]) / statistics.median(t["nee"])))
 PY

@@ -394,12 +394,12 @@ refcheck() {
 # The slides' six panels (a)-(f) on cornell-glass, one figure per KIND: 40 (paths per pixel) or
 # time (every method for the time bdpt needs for 40), in $FIG/six-panels-KIND.png.
 sixPanels() {
-  local scene=cornell-glass panels="pt|(a) eye tracing (pt)|--method pt
-nee|(b) eye tracing + next event (nee)|--method nee
-lt|(c) next event: light tracing (lt)|--method lt
-ir|(d) instant radiosity (ir)|--method ir
-irc|(e) instant radiosity, clamped|--method ir --clamp 1e-5
-bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
+  local scene=cornell-glass panels="pt|(a) Unidirectional (eye tracing): pt|--method pt
+nee|(b) Unidirectional + next event: nee|--method nee
+lt|(c) Next event (light tracing): lt|--method lt
+ir|(d) Instant radiosity: ir|--method ir
+irc|(e) Instant radiosity (clamped): ir --clamp 1e-5|--method ir --clamp 1e-5
+bdpt|(f) Bidirectional path tracing: bdpt|--method bdpt"
   mkdir -p "$LOGS/fig" "$FIG"
   for kind in "$@"; do
     if [ "$kind" = 40 ]; then
@@ -407,13 +407,13 @@ bdpt|(f) bidirectional path tracing (bdpt)|--method bdpt"
         ./bdpt scenes/$scene.scene $opts --spp 40 --quiet --out "$LOGS/fig/$name-40.png"
       done <<< "$panels"
     else
-      t=$(./bdpt scenes/$scene.scene --method bdpt --spp 40 --out "$LOGS/fig/t.png" | sed -n 's/.* in \([0-9.e+-]*\) s.*/\1/p')
+      t=$(./bdpt scenes/$scene.scene --method bdpt --spp 40 --out "$LOGS/fig/t.png" | sed -n 's/.* s (\([0-9.e+-]*\) CPU s).*/\1/p')
       while IFS='|' read -r name title opts; do
         ./bdpt scenes/$scene.scene $opts --time "$t" --out "$LOGS/fig/$name-time.png" |
           sed -n 's/.*: \([0-9]*\) samples per pixel in.*/\1/p' > "$LOGS/fig/$name-time.spp"
       done <<< "$panels"
     fi
-    caption="40 paths per pixel"; [ "$kind" = time ] && caption="equal time: $t s each (what bdpt needs for 40 paths per pixel)"
+    caption="40 paths per pixel"; [ "$kind" = time ] && caption="equal CPU time: $t s each (what bdpt needs for 40 paths per pixel)"
     {
       echo 'set terminal pngcairo size 1200,880 font "sans,12"'
       echo "set output '$FIG/six-panels-$kind.png'"

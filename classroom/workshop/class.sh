@@ -89,7 +89,7 @@ set key outside right
 set grid
 set autoscale fix
 set offsets 0, 0, graph 0.05, graph 0.05
-set title "$title\nRMSE against CPU seconds (64x64, one thread each, two runs at a time)"
+set title "$title\nRMSE against CPU seconds (64x64, one thread each)"
 set xlabel "CPU seconds"
 set ylabel "RMSE"
 set format y "%g"
