@@ -309,17 +309,14 @@ inline int loggedPasses(const std::string& logFile, const std::string& sceneAndM
     for (std::string line; std::getline(log, line);) rows += line.rfind(sceneAndMethod + ",", 0) == 0;
     return rows;
 }
-// CPU seconds this process and its finished children have used: a budget that a busy machine
-// does not change, unlike the wall clock's.
-inline double cpuSecondsWithChildren() {
-    double seconds = 0;
-    for (int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
-        rusage u{};
-        getrusage(who, &u);
-        seconds += double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-    }
-    return seconds;
+// CPU seconds this process (RUSAGE_SELF) or its finished children have used, as the kernel counts
+// them: a budget that a busy machine does not change, unlike the wall clock's.
+inline double cpuSeconds(int who) {
+    rusage u{};
+    getrusage(who, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
+inline double cpuSecondsWithChildren() { return cpuSeconds(RUSAGE_SELF) + cpuSeconds(RUSAGE_CHILDREN); }
 
 // Runs ./bdpt (the real program, its main and signal handler) with args, its stderr into
 // build/tmp/NAME.err; sends SIGINT once `ready` holds (an event: a pass logged, a line printed)

@@ -415,11 +415,7 @@ TEST_CASE("--side-by-side --time T gives every panel T seconds of CPU time") {
     const int cores = int(std::max(1u, std::thread::hardware_concurrency())), panels = std::min(8, cores + 1);
     std::string entries = "pt";
     for (int i = 1; i < panels; ++i) entries += i % 2 ? ",nee" : ",pt";
-    auto cpuNow = [] {
-        rusage u{};
-        getrusage(RUSAGE_SELF, &u);
-        return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-    };
+    auto cpuNow = [] { return cpuSeconds(RUSAGE_SELF); };
     const double T = 0.3, before = cpuNow();
     Run r = run({"scenes/cornell.scene", "--res", "32x32", "--side-by-side", entries, "--time", "0.3", "--out", "build/tmp/fh_cpu.png"});
     const double used = cpuNow() - before;
@@ -446,11 +442,7 @@ TEST_CASE("--side-by-side --time T gives every panel T seconds of CPU time") {
 // (the kernel's count, getrusage), not T on each thread as a wall-clock budget on an idle 2-core
 // machine would; --wall-time T is the wall clock's. Both print which clock they mean.
 TEST_CASE("--time T: T CPU seconds for a render on two threads; --wall-time names the wall clock") {
-    auto cpuNow = [] {
-        rusage u{};
-        getrusage(RUSAGE_SELF, &u);
-        return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-    };
+    auto cpuNow = [] { return cpuSeconds(RUSAGE_SELF); };
     const double before = cpuNow();
     Run r = run({"scenes/cornell.scene", "--res", "48x48", "--threads", "2", "--time", "0.6", "--out", "build/tmp/fh_time.png"});
     const double used = cpuNow() - before;
