@@ -131,7 +131,7 @@ help:
 	@echo "make run        render scenes/cornell.scene into build/cornell.png (seconds)"
 	@echo "Durations: wall-clock on an idle 2-core machine, CPU where said. Budgets (--time, the charts' runs) are CPU"
 	@echo "seconds: a busy machine gives the same figures, later."
-	@echo "make test       every test file, one line each (about 4 CPU minutes, 2.5 minutes); make test-sanitize (about 11)"
+	@echo "make test       every test file, one line each (about 4 CPU minutes, 2.5 minutes); make test-sanitize (about 12 minutes)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
 	@echo "make class      a class's figures for a projector (six panels at equal samples and time, pyramid,"
 	@echo "                mistakes, sds, Metropolis, error-vs-time charts): build/class/ (6.5 CPU minutes, 4.5 minutes;"
