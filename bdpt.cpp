@@ -3046,13 +3046,13 @@ inline bool makeFolders(const std::string& path) {
     return true;
 }
 // Why a folder cannot be made: the first part of it that is a file, or the system's reason.
-inline std::string folderProblem(const std::string& path) {
+inline std::string folderProblem(const std::string& path, int reason = errno) {  // reason: mkdir's, before stat overwrites errno
     for (size_t i = 1; i <= path.size(); ++i) {
         if (i < path.size() && path[i] != '/') continue;
         struct stat st;
         if (stat(path.substr(0, i).c_str(), &st) == 0 && !S_ISDIR(st.st_mode)) return path.substr(0, i) + " is a file";
     }
-    return std::strerror(errno);
+    return std::strerror(reason);
 }
 
 // Files appear whole or not at all: written under a temporary name, then renamed.
