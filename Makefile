@@ -145,32 +145,47 @@ help:
 	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 35 minutes)"
 	@echo "make refs       REWRITES the committed references in scenes/refs/ (about 95 minutes)"
 	@echo "make test-refs  REWRITES the tests' own references in tests/refs/ (about 3 minutes)"
-	@echo "make web        the page in the browser, methods side by side: build/web/ (about 30 s; needs emscripten)"
+	@echo "make web        the page in the browser, the notes beside the methods: build/web/ (about 30 s; emscripten, libjs-katex, libjs-marked)"
 	@echo "make serve-web  make web, then serves it at http://localhost:8000/ (PORT=...)"
-	@echo "make test-web   the page in headless chromium: means against ./bdpt, every method, a scene error (about a minute)"
+	@echo "make test-web   the page in headless chromium against ./bdpt and the notes' numbers, from a file, a dead worker, phone and laptop sizes (about a minute)"
 	@echo "make bench-web  WebAssembly's time per sample against ./bdpt's, one thread each (about a minute)"
 	@echo "make fuzz       the scene parser under libFuzzer for FUZZ_SECONDS (60); make clean"
 
 # The page in the browser (classroom/web/): the renderer compiled to WebAssembly by Debian's
 # emscripten, with SSE's intrinsics on WebAssembly's SIMD (the BVH's 4-wide box test), the scenes
-# and their references embedded, and the page's files beside it: build/web/, a static folder for any
-# web server. NODE_PATH: Debian's emscripten finds its optimiser's modules (acorn) there.
+# and their references embedded, the wasm inlined into its loader (SINGLE_FILE) and that loader
+# and worker.js into engine.js, whose text the page starts its workers from (a Blob), so that the
+# page opens from a file as well as from a server; the lecture notes rendered by Debian's marked
+# and KaTeX (build_notes.js), with their figures and KaTeX's fonts: build/web/, a static folder.
+# NODE_PATH: Debian's emscripten finds its optimiser's modules (acorn) there.
 WEB_FLAGS := -std=c++17 -O3 -msimd128 -msse -msse2 -fwasm-exceptions -DBDPT_STB_HEADER -I/usr/include/stb
-WEB_PAGE := $(addprefix build/web/,index.html app.js worker.js style.css)
-web: build/web/bdpt-web.js build/web/scenes.js $(WEB_PAGE)
-build/web/bdpt-web.js: classroom/web/bdpt-web.cpp bdpt.cpp $(wildcard classroom/*.h) $(wildcard scenes/*.scene scenes/refs/*.pfm)
+WEB_PAGE := $(addprefix build/web/,index.html app.js style.css)
+web: build/web/engine.js build/web/scenes.js build/web/notes.js build/web/katex/katex.min.css $(WEB_PAGE)
+build/web-engine/bdpt-web.js: classroom/web/bdpt-web.cpp bdpt.cpp $(wildcard classroom/*.h) $(wildcard scenes/*.scene scenes/refs/*.pfm)
 	@command -v em++ >/dev/null || { echo "make web needs Debian's emscripten: apt-get install emscripten"; exit 1; }
-	@mkdir -p build/web
-	NODE_PATH=/usr/share/nodejs em++ $(WEB_FLAGS) -o build/web/bdpt-web.tmp.js classroom/web/bdpt-web.cpp \
-	  -sMODULARIZE=1 -sEXPORT_NAME=createBdpt -sALLOW_MEMORY_GROWTH=1 -sENVIRONMENT=web,worker \
+	@mkdir -p build/web-engine
+	NODE_PATH=/usr/share/nodejs em++ $(WEB_FLAGS) -o build/web-engine/bdpt-web.tmp.js classroom/web/bdpt-web.cpp \
+	  -sMODULARIZE=1 -sEXPORT_NAME=createBdpt -sALLOW_MEMORY_GROWTH=1 -sENVIRONMENT=worker -sSINGLE_FILE=1 \
 	  -sEXPORTED_RUNTIME_METHODS=cwrap --embed-file scenes@/scenes --exclude-file '*.png' --exclude-file '*.csv'
-	sed 's/bdpt-web\.tmp\.wasm/bdpt-web.wasm/g' build/web/bdpt-web.tmp.js > build/web/bdpt-web.js
-	mv build/web/bdpt-web.tmp.wasm build/web/bdpt-web.wasm && rm build/web/bdpt-web.tmp.js
-# The committed scenes' texts for the page's scene menu and editor.
-build/web/scenes.js: $(wildcard scenes/*.scene)
+	mv build/web-engine/bdpt-web.tmp.js $@
+build/web/engine.js: build/web-engine/bdpt-web.js classroom/web/worker.js
+	@mkdir -p build/web
+	node -e 'const fs = require("fs"), src = process.argv.slice(1).map((f) => fs.readFileSync(f, "utf8")).join("\n"); fs.writeFileSync("$@.tmp", "const BDPT_WORKER_SOURCE = " + JSON.stringify(src) + ";\n")' $^
+	mv $@.tmp $@
+# The scenes' texts for the page's scene menu and editor, and two tests' scenes (a notes page names one, a mistake needs the other).
+build/web/scenes.js: $(wildcard scenes/*.scene) tests/energy-generator-flat.scene tests/thin-gap.scene
 	@mkdir -p build/web
 	node -e 'const fs = require("fs"), o = {}; for (const f of process.argv.slice(1)) o[f] = fs.readFileSync(f, "utf8"); fs.writeFileSync("$@.tmp", "const BDPT_SCENES = " + JSON.stringify(o, null, 1) + ";\n")' $^
 	mv $@.tmp $@
+build/web/notes.js: classroom/web/build_notes.js $(wildcard lecture_notes/*.md lecture_notes/figures/*)
+	@test -f /usr/share/javascript/marked/marked.umd.js || { echo "make web needs Debian's libjs-marked: apt-get install libjs-marked"; exit 1; }
+	@test -f /usr/share/javascript/katex/katex.min.js || { echo "make web needs Debian's libjs-katex: apt-get install libjs-katex"; exit 1; }
+	@mkdir -p build/web
+	node classroom/web/build_notes.js $@ build/web/notes/figures
+build/web/katex/katex.min.css: /usr/share/javascript/katex/katex.min.css
+	@mkdir -p build/web/katex
+	cp -rL /usr/share/javascript/katex/fonts build/web/katex/
+	cp $< $@
 build/web/%: classroom/web/%
 	@mkdir -p build/web
 	cp $< $@

@@ -2978,38 +2978,42 @@ struct Rendering {
     RenderResult result;
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
     std::atomic<int> rowsDone{0};  // of the pass in flight (classroom/'s progress bar reads it)
+    PassData passData;             // the pass in flight's light paths, VPLs or chains,
+    RayCount raysBefore;           // and what was counted before it (parallelRows adds the other
+    double cpuBefore = 0;          // threads' rays and CPU time to this one's)
     Rendering(const Scene& s, const RenderOptions& o)
         : scene(s), opt(o), threads(o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()))),
           film(s.camera.width, s.camera.height, o), pass(size_t(s.camera.width) * s.camera.height), rows(s.camera.height) {}
 
     // The slides' estimator for one pass: every pixel's sample, then the splats, then the film.
     void addPass() {
-        const int W = scene.camera.width, H = scene.camera.height, p = result.passes;
-        const RayCount before = gRaysTraced;  // parallelRows adds the other threads' rays to this one's
-        const double cpuBefore = threadCpuSeconds() + gWorkerCpuSeconds;  // and their CPU time
-        const PassData data = preparePass(scene, opt, p, threads, storage);
+        beginPass();
+        parallelRows(scene.camera.height, threads, [&](int y) { renderRow(y); });
+        endPass();
+    }
+    // The same pass in three steps, for a caller that shows a pass's rows as they come (the page).
+    void beginPass() {
+        raysBefore = gRaysTraced, cpuBefore = threadCpuSeconds() + gWorkerCpuSeconds, rowsDone = 0;
+        passData = preparePass(scene, opt, result.passes, threads, storage);
+    }
+    void renderRow(int y) {
+        const int W = scene.camera.width, p = result.passes;
         const SampleFunction sample = sampleFunction(opt.method);
-        rowsDone = 0;
-        parallelRows(H, threads, [&](int y) {
-            RowOutput& row = rows[y];
-            row.splats.clear();
-            row.strategySplats.clear();
-            row.strategyMaxLength = opt.strategyMaxLength;
-            row.nonFinite = 0;
-            row.energyUnclamped = row.energyClamped = 0;
-            for (int x = 0; x < W; ++x) {
-                Rng rng = sampleRng(opt, kCameraStream, uint64_t(y) * W + x, uint64_t(p));
-                Vec3 v = sample(scene, opt, data, x, y, rng, row);
-                if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
-                pass[size_t(y) * W + x] = v;
-            }
-            rowsDone.fetch_add(1, std::memory_order_relaxed);
-        });
-        result.rays.closest += gRaysTraced.closest - before.closest;
-        result.rays.shadow += gRaysTraced.shadow - before.shadow;
+        RowOutput& row = rows[y];
+        row.splats.clear(), row.strategySplats.clear();
+        row.strategyMaxLength = opt.strategyMaxLength, row.nonFinite = 0, row.energyUnclamped = row.energyClamped = 0;
+        for (int x = 0; x < W; ++x) {
+            Rng rng = sampleRng(opt, kCameraStream, uint64_t(y) * W + x, uint64_t(p));
+            Vec3 v = sample(scene, opt, passData, x, y, rng, row);
+            if (!isFinite(v)) { v = Vec3(0); ++row.nonFinite; }
+            pass[size_t(y) * W + x] = v;
+        }
+        rowsDone.fetch_add(1, std::memory_order_relaxed);
+    }
+    void endPass() {
+        result.rays.closest += gRaysTraced.closest - raysBefore.closest, result.rays.shadow += gRaysTraced.shadow - raysBefore.shadow;
         film.addPass(pass, rows, result);
-        result.passes = p + 1;
-        result.cpuSeconds += threadCpuSeconds() + gWorkerCpuSeconds - cpuBefore;
+        result.passes += 1, result.cpuSeconds += threadCpuSeconds() + gWorkerCpuSeconds - cpuBefore;
     }
     RenderResult finish() {
         result.seconds = secondsSince(start);

@@ -304,7 +304,7 @@ TEST_CASE("notes, page 5: a light path starts at Phi_light / P(light) = Phi") {
 }
 
 TEST_CASE("notes, pages 7 and 10: p_{k,s+1}/p_{k,s} = pdfRev/pdfFwd of the vertex changing sides, and the heuristics' table") {
-    CHECK(pageSays("07-probabilities.md", "p_{k,s+1} / p_{k,s} = pdfRev(x_s) / pdfFwd(x_s)"));
+    CHECK(pageSays("07-probabilities.md", "\\frac{p_{k,s+1}}{p_{k,s}} = \\frac{\\mathrm{pdfRev}(x_s)}{\\mathrm{pdfFwd}(x_s)}"));
     CHECK(pageSays("10-combining-estimators.md", "| `balance` | 1/(1 + sum r_i) |"));
     CHECK(pageSays("10-combining-estimators.md", "| `power` | 1/(1 + sum r_i^2) |"));
     // Paths of k = 2 on cornell: x_0 on the lamp, x_1 what a pixel sees, x_2 the pinhole. The
@@ -374,7 +374,7 @@ TEST_CASE("notes, pages 6 and 14: refraction scales radiance by (eta_o/eta_i)^2,
 }
 
 TEST_CASE("notes, page 13: the adjoint f*(wo,wi) = f(wi,wo) |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|)") {
-    CHECK(pageSays("13-shading-normals.md", "f*(wo, wi) = f(wi, wo) |wo . ns| |wi . ng| / (|wo . ng| |wi . ns|)"));
+    CHECK(pageSays("13-shading-normals.md", "f^*(w_o, w_i) = f(w_i, w_o)\\, \\frac{|w_o \\cdot n_s|\\, |w_i \\cdot n_g|}{|w_o \\cdot n_g|\\, |w_i \\cdot n_s|}"));
     Scene scene = singleQuadScene(makeMaterial(Material::Diffuse, 0.8f));
     SurfacePoint sp = surfaceAtOrigin(normalize(Vec3(0.4f, 0.1f, 1)));
     Rng rng = makeRng(7, 0, 0);
@@ -870,7 +870,7 @@ static std::vector<Quote> estimatorQuotes() {
 }
 
 static std::vector<RunQuote> runQuoteTable() {
-    const std::string p2 = "02-light-and-path-tracing.md", p3 = "03-bidirectional-path-tracing.md", p4 = "04-measurement-equation.md", p6 = "06-extending-paths.md", p11 = "11-contributions-of-paths.md", p12 = "12-comparison-with-path-tracing.md", p15 = "15-vertex-merging.md", p9 = "09-russian-roulette-and-sampling.md",
+    const std::string p1 = "01-path-sampling-techniques.md", p2 = "02-light-and-path-tracing.md", p3 = "03-bidirectional-path-tracing.md", p4 = "04-measurement-equation.md", p6 = "06-extending-paths.md", p11 = "11-contributions-of-paths.md", p12 = "12-comparison-with-path-tracing.md", p15 = "15-vertex-merging.md", p9 = "09-russian-roulette-and-sampling.md",
                       p13 = "13-shading-normals.md", p14 = "14-power-versus-radiance.md", a = "appendix-a-speed-and-accuracy.md", p17 = "17-veach-mutations.md", c = "appendix-c-quasi-random-numbers.md";
     const std::vector<std::string> seeds = {"1", "2", "3", "4"};
     auto rrRow = [](const char* label, int i) {
@@ -895,6 +895,8 @@ static std::vector<RunQuote> runQuoteTable() {
     const std::string example = "./bdpt scenes/cornell.scene --method pt --spp 64 --res 64x64 --seed 1 --ref scenes/refs/cornell.pfm --out build/notes/example-pt.png";
     const std::string ptDirect = "./bdpt scenes/cornell.scene --method pt --maxdepth 1 --res 24x24 --spp 4 --ref tests/refs/cornell-direct.pfm --out build/notes/pt-direct.png";
     return {
+        {p1, {"./bdpt scenes/cornell-glass.scene --side-by-side \"lt,ir --clamp 1e-5,bdpt\" --spp 64 --res 64x64 --ref scenes/refs/cornell-glass.pfm --out build/notes/bias.png"},
+         "", {}, {"prints bias {0.bias#1:%+.2f}% for lt", "{0.bias#2:%+.2f}% for clamped ir", "and {0.bias#3:%+.2f}% for bdpt"}},
         {p2, {"./bdpt scenes/cornell.scene --side-by-side lt,pt --maxdepth 1 --spp 4 --res 192x192 --out build/notes/direct.png"}, "", {},
          {"(means {0.mean#1:%.4f} and {0.mean#2:%.4f} in the figure's run"}},
         {p2, {ptDirect, ptDirect + " || --method lt"}, "--spp", {"4", "16", "64", "128", "256"},

@@ -1,18 +1,30 @@
 #!/usr/bin/python3
 """make test-web: the page of build/web/ in headless Debian chromium, driven over the DevTools
-protocol (python3-websocket), checked against ./bdpt.
+protocol (python3-websocket), checked against ./bdpt and against the notes' own numbers.
 
-- cornell 64x64, 16 spp, bdpt: the panel's mean equals ./bdpt's for the same options and seed;
-- every method once, six panels at a time: each panel's mean equals ./bdpt's;
-- a scene with a syntax error: the page shows ./bdpt's message, file:line and all, and renders nothing;
-  a misspelt option in an entry: that panel shows ./bdpt's message;
-- a click on a pixel: the strategy chart's bars are ./bdpt --strategies's images at that pixel;
-- no error in the page's console; a screenshot of the page at 1920 wide (build/test-web/page.png).
+- cornell 64x64, 16 spp, bdpt: the panel's mean and RMSE are ./bdpt's; the canvas as drawn is
+  ./bdpt's PNG to the level; a clicked pixel's bars are ./bdpt --strategies's images there;
+  the pyramid's weighted tiles sum to the image;
+- every method once, six panels at a time: each panel's mean is ./bdpt's;
+- a scene with a syntax error: ./bdpt's message, file:line and all, nothing rendered; a misspelt
+  option: the panel shows ./bdpt's message with its did-you-mean;
+- six panels at 2 s: a curve per panel on the chart, each falling; 256x256: every panel shows
+  its rows within its first pass; the pyramid redrawn only when its data changes;
+- the notes in the page: pages 1, 2, 11 and 13 each give a number their button reproduces;
+- a worker killed without a word: its panel ends with a message, Stop ends the run, the next
+  run renders; the layout at 1366x768 and 390x844 has no sideways scroll; a link keeps the
+  setting; the page opened from a file renders; no error in the console of the page or of
+  its workers (Runtime and Log);
+- one bdpt panel's samples per CPU second of the whole browser against ./bdpt --threads 1's
+  (CPU seconds, so a busy machine does not fail it).
+Every wait is for an event (a run's end, a panel's frame), with a hang guard of minutes.
 Prints one line per check and exits 1 if any fails."""
+import base64
 import http.server
 import json
 import math
 import os
+import re
 import shutil
 import socketserver
 import struct
@@ -21,11 +33,13 @@ import sys
 import tempfile
 import threading
 import time
+import zlib
 
 import websocket  # Debian's python3-websocket
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "build", "test-web")
+HANG = 600  # seconds: a wait longer than this is a hang, not a slow machine
 failures = []
 
 
@@ -46,16 +60,70 @@ def read_pfm(path):
     return w, h, [v for row in rows for v in row]
 
 
+def read_png(path):
+    """An 8-bit RGB or RGBA PNG (as stb writes them) as (w, h, channels, bytes), rows from the top."""
+    data = open(path, "rb").read()
+    pos, idat, w = 8, b"", 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, colour = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and colour in (2, 6), "read_png: 8-bit RGB or RGBA only"
+            ch = 3 if colour == 2 else 4
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, out, stride = zlib.decompress(idat), bytearray(), w * ch
+    previous = bytearray(stride)
+    for y in range(h):
+        f, row = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = row[i - ch] if i >= ch else 0
+            b, c = previous[i], previous[i - ch] if i >= ch else 0
+            if f == 1: row[i] = (row[i] + a) & 255
+            elif f == 2: row[i] = (row[i] + b) & 255
+            elif f == 3: row[i] = (row[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                row[i] = (row[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        out += row
+        previous = row
+    return w, h, ch, out
+
+
 def native(scene, entry, spp, seed=1, res="64x64", extra=()):
+    """./bdpt's image (PFM) and what it printed."""
     out = os.path.join(OUT, "native.png")
-    cmd = ["./bdpt", scene, "--method", *entry.split(), "--res", res, "--spp", str(spp), "--seed", str(seed),
-           "--quiet", "--out", out, *extra]
-    subprocess.run(cmd, cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
-    return read_pfm(os.path.join(OUT, "native.pfm"))
+    cmd = ["./bdpt", scene, "--method", *entry.split(), "--res", res, "--spp", str(spp), "--seed", str(seed), "--out", out, *extra]
+    printed = subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, text=True).stdout
+    w, h, img = read_pfm(os.path.join(OUT, "native.pfm"))
+    return w, h, img, printed
 
 
 def mean(values):
     return math.fsum(values) / len(values)
+
+
+def process_cpu_seconds(root_pid):
+    """User + system CPU seconds of a process and all its descendants (/proc)."""
+    children, ticks = {}, os.sysconf("SC_CLK_TCK")
+    stats = {}
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            fields = open("/proc/%s/stat" % pid).read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        stats[int(pid)] = fields
+        children.setdefault(int(fields[1]), []).append(int(pid))
+    total, todo = 0.0, [root_pid]
+    while todo:
+        pid = todo.pop()
+        if pid in stats:
+            total += (int(stats[pid][11]) + int(stats[pid][12])) / ticks
+        todo += children.get(pid, [])
+    return total
 
 
 # ---- the page's server and the browser
@@ -68,14 +136,17 @@ class QuietHandler(http.server.SimpleHTTPRequestHandler):
 
 
 class Browser:
+    """Headless chromium with one page; the console of the page and of every worker it starts
+    (auto-attached, flat sessions) is collected: exceptions, console.error and Log errors."""
+
     def __init__(self, url):
         self.profile = tempfile.mkdtemp(prefix="bdpt-chromium-")
         self.proc = subprocess.Popen(
             ["chromium", "--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run", "--remote-debugging-port=0",
-             "--user-data-dir=" + self.profile, "--window-size=1920,1080", "about:blank"],
+             "--allow-file-access-from-files", "--user-data-dir=" + self.profile, "--window-size=1920,1080", "about:blank"],
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         port_file = os.path.join(self.profile, "DevToolsActivePort")
-        for _ in range(300):
+        for _ in range(HANG * 10):
             if os.path.exists(port_file) and open(port_file).read().count("\n") >= 1:
                 break
             time.sleep(0.1)
@@ -83,25 +154,47 @@ class Browser:
         import urllib.request
         targets = json.load(urllib.request.urlopen("http://127.0.0.1:%s/json/list" % port))
         page = next(t for t in targets if t["type"] == "page")
-        self.ws = websocket.create_connection(page["webSocketDebuggerUrl"], timeout=600, suppress_origin=True)
+        self.ws = websocket.create_connection(page["webSocketDebuggerUrl"], timeout=HANG, suppress_origin=True)
         self.next_id = 0
+        self.side_id = 10 ** 6  # ids of the calls to the workers' sessions, whose answers nobody waits for
         self.console_errors = []
-        self.call("Runtime.enable")
-        self.call("Page.enable")
-        self.call("Emulation.setDeviceMetricsOverride", width=1920, height=1080, deviceScaleFactor=1, mobile=False)
+        self.workers_attached = 0
+        for domain in ("Runtime.enable", "Page.enable", "Log.enable"):
+            self.call(domain)
+        self.call("Target.setAutoAttach", autoAttach=True, waitForDebuggerOnStart=False, flatten=True)
+        self.size(1920, 1080)
+        self.open(url)
+
+    def open(self, url):
         self.call("Page.navigate", url=url)
-        self.wait_for("bdptPage && bdptPage.ready()", 60)
+        self.wait_for("bdptPage && bdptPage.ready()")
+
+    def size(self, width, height):
+        self.call("Emulation.setDeviceMetricsOverride", width=width, height=height, deviceScaleFactor=1, mobile=width < 800)
+
+    def _event(self, m):
+        method, params = m.get("method"), m.get("params", {})
+        where = " (worker)" if m.get("sessionId") else ""
+        if method == "Runtime.exceptionThrown":
+            self.console_errors.append(params["exceptionDetails"].get("exception", {}).get("description", "exception") + where)
+        elif method == "Runtime.consoleAPICalled" and params["type"] == "error":
+            self.console_errors.append(" ".join(str(a.get("value", a.get("description"))) for a in params["args"]) + where)
+        elif method == "Log.entryAdded" and params["entry"]["level"] == "error":
+            self.console_errors.append(params["entry"]["text"] + " " + params["entry"].get("url", "") + where)
+        elif method == "Target.attachedToTarget":
+            self.workers_attached += 1
+            for domain in ("Runtime.enable", "Log.enable", "Runtime.runIfWaitingForDebugger"):
+                self.side_id += 1
+                self.ws.send(json.dumps({"id": self.side_id, "sessionId": params["sessionId"], "method": domain}))
 
     def call(self, method, **params):
         self.next_id += 1
         self.ws.send(json.dumps({"id": self.next_id, "method": method, "params": params}))
         while True:
             m = json.loads(self.ws.recv())
-            if m.get("method") == "Runtime.exceptionThrown":
-                self.console_errors.append(m["params"]["exceptionDetails"].get("exception", {}).get("description", "exception"))
-            elif m.get("method") == "Runtime.consoleAPICalled" and m["params"]["type"] == "error":
-                self.console_errors.append(" ".join(str(a.get("value", a.get("description"))) for a in m["params"]["args"]))
-            if m.get("id") == self.next_id:
+            if "method" in m:
+                self._event(m)
+            if m.get("id") == self.next_id and "sessionId" not in m:
                 if "error" in m:
                     raise RuntimeError(method + ": " + json.dumps(m["error"]))
                 return m["result"]
@@ -112,11 +205,12 @@ class Browser:
             raise RuntimeError(expression + ": " + r["exceptionDetails"].get("exception", {}).get("description", "error"))
         return r["result"].get("value")
 
-    def wait_for(self, condition, seconds):
+    def wait_for(self, condition, guard=HANG):
+        """Until the page's condition holds (polled; the guard is a hang's, not a speed limit)."""
         t0 = time.time()
-        while time.time() - t0 < seconds:
+        while time.time() - t0 < guard:
             try:
-                if self.js("typeof bdptPage !== 'undefined' && (%s)" % condition):
+                if self.js("typeof bdptPage !== 'undefined' && !!(%s)" % condition):
                     return
             except RuntimeError:
                 pass
@@ -130,15 +224,13 @@ class Browser:
         self.js("bdptPage.run()")
         return self.js("bdptPage.panels()")
 
-    def screenshot(self, path):
-        height = self.js("document.documentElement.scrollHeight")
-        self.call("Emulation.setDeviceMetricsOverride", width=1920, height=height, deviceScaleFactor=1, mobile=False)
+    def screenshot(self, path, width=1920, height=None):
+        self.size(width, height or self.js("document.documentElement.scrollHeight"))
         shot = self.call("Page.captureScreenshot", format="png")
-        import base64
         with open(path + ".tmp", "wb") as f:
             f.write(base64.b64decode(shot["data"]))
         os.replace(path + ".tmp", path)
-        self.call("Emulation.setDeviceMetricsOverride", width=1920, height=1080, deviceScaleFactor=1, mobile=False)
+        self.size(1920, 1080)
 
     def close(self):
         self.ws.close()
@@ -154,7 +246,7 @@ def main():
     threading.Thread(target=server.serve_forever, daemon=True).start()
     browser = Browser("http://127.0.0.1:%d/index.html" % server.server_address[1])
     try:
-        tests(browser)
+        tests(browser, "http://127.0.0.1:%d/index.html" % server.server_address[1])
     finally:
         browser.close()
         server.shutdown()
@@ -170,16 +262,43 @@ def close(a, b, tolerance=1e-6):
     return abs(a - b) <= tolerance * abs(b)
 
 
-def tests(browser):
-    # 1. bdpt on cornell, 64x64 x 16, seed 1: the page's mean is ./bdpt's.
+def tests(browser, url):
+    first_panel(browser)
+    every_method(browser)
+    mistakes_in_input(browser)
+    six_panels(browser)
+    notes_numbers(browser)
+    dead_worker(browser)
+    layout_and_link(browser, url)
+    from_a_file(browser)
+    speed(browser)
+    browser.js("bdptPage.openNotes('01-path-sampling-techniques')")
+    browser.run("scenes/cornell.scene", ["pt", "nee --mis", "lt", "ir --clamp 1e-5", "bdpt --heuristic power", "vcm"], 0, seconds=2)
+    browser.js("bdptPage.clickPixel(4, 20, 44)")
+    browser.screenshot(os.path.join(OUT, "page.png"))
+    check(browser.workers_attached >= 6 and not browser.console_errors, "no error in the console of the page or of its %d workers (Runtime, Log)" % browser.workers_attached,
+          "; ".join(browser.console_errors[:3]))
+    print("      screenshot: build/test-web/page.png")
+
+
+def first_panel(browser):
+    # bdpt on cornell, 64x64 x 16, seed 1: the page's mean and error are ./bdpt's.
     panels = browser.run("scenes/cornell.scene", ["bdpt"], 16)
-    w, h, ref = native("scenes/cornell.scene", "bdpt", 16)
+    w, h, ref, printed = native("scenes/cornell.scene", "bdpt", 16, extra=("--ref", "scenes/refs/cornell.pfm"))
     p = panels[0]
     check(p["passes"] == 16 and not p["error"] and close(p["mean"], mean(ref)), "cornell 64x64 x 16 spp bdpt: the page's mean is ./bdpt's",
-          "page %.9g, ./bdpt %.9g, %d passes, first image %.0f ms after Start" % (p["mean"], mean(ref), p["passes"], p["firstFrameMs"]))
-    check(p["rmse"] is not None and 0 < p["rmse"] < 1, "the panel's RMSE against scenes/refs/cornell.pfm", "%.4g" % p["rmse"])
+          "page %.9g, ./bdpt %.9g" % (p["mean"], mean(ref)))
+    m = re.search(r"rmse ([0-9.e-]+) \(([0-9.e-]+) without the lamp's pixels\).*bias ([-+0-9.]+)%", printed)
+    check(m and "%.4g" % p["rmse"] == m.group(1) and "%.4g" % p["rmseWithoutLamp"] == m.group(2) and "%+.2f" % (100 * p["bias"]) == m.group(3),
+          "the panel's RMSE and bias are ./bdpt --ref's", "page %.4g (%.4g), %+.2f%%; ./bdpt %s" % (p["rmse"], p["rmseWithoutLamp"], 100 * p["bias"], m and m.group(0)))
 
-    # 2. A click on a pixel: the bars are ./bdpt --strategies's images there (paths up to 4 segments).
+    # The canvas as drawn: ./bdpt's PNG, level for level (orientation, exposure and the sRGB curve).
+    pixels = browser.js("bdptPage.canvasPixels(0)")
+    pw, ph, ch, png = read_png(os.path.join(OUT, "native.png"))
+    worst = max(abs(pixels[4 * i + c] - png[ch * i + c]) for i in range(pw * ph) for c in range(3))
+    check((pw, ph) == (64, 64) and worst == 0, "the panel's canvas is ./bdpt's PNG to the level", "largest difference %d levels" % worst)
+
+    # A click on a pixel: the bars are ./bdpt --strategies's images at that pixel (paths up to 4 segments).
     x, y = 20, 44
     bars = browser.js("bdptPage.clickPixel(0, %d, %d)" % (x, y))
     strat_dir = os.path.join(OUT, "strategies")
@@ -187,66 +306,240 @@ def tests(browser):
     native("scenes/cornell.scene", "bdpt", 16, extra=("--strategies", strat_dir, "--strategy-length", "4"))
     worst, count = 0.0, 0
     for b in bars:
-        name = b["strategy"].replace(" ", "_")
-        _, _, img = read_pfm(os.path.join(strat_dir, "%s_%s.pfm" % (name, b["kind"])))
+        _, _, img = read_pfm(os.path.join(strat_dir, "%s_%s.pfm" % (b["strategy"].replace(" ", "_"), b["kind"])))
         i = 3 * (y * w + x)
         expected = (img[i] + img[i + 1] + img[i + 2]) / 3
         worst = max(worst, abs(b["value"] - expected) / max(1e-6, abs(expected)))
         count += 1
     check(count == 28 and worst < 1e-5, "a clicked pixel's strategy chart: 14 strategies x (unweighted, weighted) = ./bdpt --strategies there",
           "%d bars, largest relative difference %.2g" % (count, worst))
-    weighted = sum(b["value"] for b in bars if b["kind"] == "weighted")
-    check(weighted > 0, "the weighted bars carry light at (%d, %d)" % (x, y), "sum %.4g" % weighted)
 
-    # 3. Every method once, six panels at a time, 4 spp: each mean is ./bdpt's. The last entry
+    # With paths of at most 4 segments, the pyramid's weighted tiles sum to the image, pixel by pixel.
+    browser.run("scenes/cornell.scene", ["bdpt --maxdepth 3"], 8)
+    s = browser.js("bdptPage.pyramidSums()")
+    worst = max(abs(a - b) / max(1e-4, b) for a, b in zip(s["sum"], s["image"]))
+    check(s["drawn"] and s["tiles"] == 14 and worst < 1e-5, "the pyramid's weighted tiles sum to the image (--maxdepth 3: paths of at most 4 segments, every one in them)",
+          "%d tiles, largest relative difference %.2g over %d pixels" % (s["tiles"], worst, len(s["sum"])))
+
+
+def every_method(browser):
+    # Every method once, six panels at a time, 4 spp: each mean is ./bdpt's. The last entry
     # carries a deliberate mistake that changes cornell's mean (by a quarter), so the page must pass it on.
     methods = ["pt", "nee --mis", "lt", "ir --clamp 1e-5", "bdpt --heuristic power", "vcm", "pssmlt", "mmlt", "mlt", "lt --no-scramble"]
     for group in (methods[:6], methods[6:]):
         panels = browser.run("scenes/cornell.scene", group, 4)
         for entry, p in zip(group, panels):
-            _, _, img = native("scenes/cornell.scene", entry, 4)
+            _, _, img, _ = native("scenes/cornell.scene", entry, 4)
             tolerance = 1e-5 if entry.split()[0] in ("pssmlt", "mmlt", "mlt") else 1e-6
             check(p["passes"] == 4 and not p["error"] and close(p["mean"], mean(img), tolerance),
                   "every method: '%s' mean as ./bdpt's within %g" % (entry, tolerance),
                   "page %.9g, ./bdpt %.9g, relative difference %.2g" % (p["mean"], mean(img), abs(p["mean"] / mean(img) - 1)))
+    # An entry's own options win over the page's, as in ./bdpt --side-by-side.
+    panels = browser.run("scenes/cornell.scene", ["pt --spp 3", "bdpt --res 32x32"], 2)
+    check(panels[0]["passes"] == 3 and panels[1]["passes"] == 2 and (panels[1]["width"], panels[1]["height"]) == (32, 32),
+          "an entry's --spp and --res win over the page's", "pt %d spp, bdpt %d spp at %dx%d" % (panels[0]["passes"], panels[1]["passes"], panels[1]["width"], panels[1]["height"]))
 
-    # 4. A scene with an error: the page shows ./bdpt's message, file:line, and renders nothing.
+
+def mistakes_in_input(browser):
+    # A scene with an error: the page shows ./bdpt's message, file:line, and renders nothing.
     text = open(os.path.join(ROOT, "scenes/cornell.scene")).read().split("\n")
     bad_line = next(i for i, l in enumerate(text) if l.startswith("material"))
     text[bad_line] = text[bad_line].replace("material", "materail", 1)
     bad = os.path.join(OUT, "cornell.scene")
     open(bad, "w").write("\n".join(text))
-    expected = subprocess.run(["./bdpt", bad, "--quiet", "--out", os.path.join(OUT, "bad.png")], cwd=ROOT, capture_output=True, text=True).stderr.strip()
+    expected = subprocess.run(["./bdpt", bad, "--out", os.path.join(OUT, "bad.png")], cwd=ROOT, capture_output=True, text=True).stderr.strip()
     expected = expected.replace(bad, "scenes/cornell.scene")
     browser.js("bdptPage.selectScene('scenes/cornell.scene')")
     browser.js("bdptPage.setSceneText(%s)" % json.dumps("\n".join(text)))
     browser.js("bdptPage.setEntries(['bdpt'])")
     browser.js("bdptPage.run()")
     shown = browser.js("bdptPage.sceneError()")
-    check(shown == expected and ":%d:" % (bad_line + 1) in shown, "a misspelt directive: the page shows ./bdpt's message with its line",
-          repr(shown))
+    check(shown == expected and ":%d:" % (bad_line + 1) in shown and browser.js("bdptPage.panels().length") == 0,
+          "a misspelt directive: the page shows ./bdpt's message with its line, and no panel", repr(shown))
 
-    # 5. A misspelt option in an entry: the panel shows ./bdpt's message, and the other panel renders.
+    # A misspelt option in an entry: the panel shows ./bdpt's message, did-you-mean and all.
     browser.js("bdptPage.selectScene('scenes/cornell.scene')")
     panels = browser.run("scenes/cornell.scene", ["bdpt --heurstic power", "pt"], 2)
-    expected = subprocess.run(["./build/bdpt-lecture", "scenes/cornell.scene", "--method", "bdpt", "--heurstic", "power", "--seed", "1"],
-                              cwd=ROOT, capture_output=True, text=True).stderr.strip()
-    check(panels[0]["error"] == expected and panels[1]["passes"] == 2, "a misspelt option: the panel shows ./bdpt's message, the next one renders",
-          repr(panels[0]["error"]))
+    expected = subprocess.run(["./bdpt", "scenes/cornell.scene", "--method", "bdpt", "--heurstic", "power"],
+                              cwd=ROOT, capture_output=True, text=True).stderr.strip().replace(" (see --help)", "")
+    check(panels[0]["error"].startswith(expected) and "did you mean --heuristic?" in expected and panels[1]["passes"] == 2,
+          "a misspelt option: the panel shows ./bdpt's message with its did-you-mean, the next one renders", repr(panels[0]["error"]))
+    # A mistake on a scene that cannot show it is said so; on one that can, not.
+    panels = browser.run("scenes/refraction.scene", ["lt", "lt --no-adjoint-correction"], 1)
+    warned = any("cannot show" in n for n in panels[1]["notes"])
+    panels = browser.run("scenes/shading-normals.scene", ["lt", "lt --no-adjoint-correction"], 1)
+    check(warned and not any("cannot show" in n for n in panels[1]["notes"]) and panels[1]["what"].startswith("(c)"),
+          "--no-adjoint-correction on refraction: 'this scene cannot show it'; on shading-normals: no such warning", repr(panels[1]["notes"]))
 
-    # 6. The page as a class sees it: six methods at equal time, a pixel chosen; no error in the console.
+
+def six_panels(browser):
+    # Six panels at 2 s each: one falling curve per panel on the chart; the pyramid redrawn only
+    # when a panel's strategies come (about once a second), not at every frame.
     browser.js("bdptPage.selectScene('scenes/cornell.scene')")
-    panels = browser.run("scenes/cornell.scene", ["pt", "nee --mis", "lt", "ir --clamp 1e-5", "bdpt --heuristic power", "vcm"], 0, seconds=3)
-    check(all(p["seconds"] >= 3 and p["passes"] > 0 for p in panels), "six panels at 3 s each, side by side",
-          ", ".join("%s %d spp" % (p["entry"], p["passes"]) for p in panels))
-    first, gap = max(p["firstFrameMs"] for p in panels), browser.js("bdptPage.longestFrameGap()")
-    check(first < 1000, "each of six panels shows its first image within 1 s of Start", "the last after %.0f ms" % first)
-    check(gap < 500, "the page stays responsive while six workers render (a frame at least every 500 ms)",
-          "longest gap between frames %.0f ms" % gap)
-    browser.js("bdptPage.clickPixel(4, 20, 44)")
-    browser.screenshot(os.path.join(OUT, "page.png"))
-    check(not browser.console_errors, "no error in the page's console", "; ".join(browser.console_errors[:3]))
-    print("      screenshot: build/test-web/page.png")
+    before = browser.js("bdptPage.pyramidRedraws() || 0")
+    panels = browser.run("scenes/cornell.scene", ["pt", "nee --mis", "lt", "ir --clamp 1e-5", "bdpt --heuristic power", "vcm"], 0, seconds=2)
+    curves = browser.js("bdptPage.chartCurves()")
+    falling = [p["entry"] for p in panels if len(p["curve"]) >= 2 and p["curve"][-1][1] < p["curve"][0][1]]
+    drawn_falling = [c["entry"] for c in curves if c["points"][-1][1] > c["points"][0][1]]  # SVG y grows downwards
+    check(sorted(c["entry"] for c in curves) == sorted(p["entry"] for p in panels) and len(falling) == 6 and len(drawn_falling) == 6,
+          "six panels at 2 s: the chart has one curve per panel, each falling",
+          ", ".join("%s %d points %.3g -> %.3g" % (p["entry"], len(p["curve"]), p["curve"][0][1], p["curve"][-1][1]) for p in panels if p["curve"]))
+    redraws, frames = browser.js("bdptPage.pyramidRedraws()") - before, sum(len(p["curve"]) for p in panels)
+    check(redraws <= 12, "the pyramid is redrawn when its strategies change, not at every frame",
+          "%d redraws in a 2 s run of %d curve points (the old page: one a frame)" % (redraws, frames))
+    # 256x256: the slow methods show their first pass's rows before it ends.
+    panels = browser.run("scenes/cornell.scene", ["pt", "nee --mis", "lt", "ir --clamp 1e-5", "bdpt --heuristic power", "vcm"], 0, seconds=2, resolution="256x256")
+    within = [p["entry"] for p in panels if p["firstFramePasses"] == 0]
+    check(all(p["firstFrameMs"] is not None for p in panels) and {"bdpt --heuristic power", "vcm", "ir --clamp 1e-5"} <= set(within),
+          "256x256: bdpt, ir and vcm show their first pass's rows before it ends",
+          ", ".join("%s first image %.0f ms after Start%s" % (p["entry"], p["firstFrameMs"], " (within its pass)" if p["firstFramePasses"] == 0 else "") for p in panels))
+    check(all(p["comparedWidth"] == 64 and p["rmse"] for p in panels), "256x256: every panel has its error against the 64x64 reference",
+          ", ".join("%s %.3g" % (p["entry"], p["rmseWithoutLamp"] or 0) for p in panels))
+
+
+def notes_numbers(browser):
+    """Pages 1, 2, 11 and 13: the number the page quotes, from its button's run in the page."""
+    def page_text(name):
+        return open(os.path.join(ROOT, "lecture_notes", name + ".md")).read().replace("\n", " ")
+
+    def press(page, part):
+        browser.js("bdptPage.openNotes(%s)" % json.dumps(page))
+        buttons = browser.js("bdptPage.notesButtons()")
+        command = next(b["command"] for b in buttons if part in b["command"] and b["runs"])
+        browser.js("bdptPage.clickNotesButton(%s)" % json.dumps(command))
+        browser.wait_for("bdptPage.panels().length > 0 && !bdptPage.running()")
+        return {p["entry"]: p for p in browser.js("bdptPage.panels()")}, buttons
+
+    text = page_text("01-path-sampling-techniques")
+    quoted = re.search(r"prints bias ([-+0-9.]+)% for lt .*?([-+0-9.]+)% for clamped ir", text)
+    panels, _ = press("01-path-sampling-techniques", "--ref scenes/refs/cornell-glass.pfm")
+    shown = ["%+.2f" % (100 * panels[e]["bias"]) for e in ("lt", "ir --clamp 1e-5")]
+    check(quoted and list(quoted.groups()) == shown, "page 1's button: lt's and clamped ir's bias as the page quotes them",
+          "page %s, the page's panels %s" % (quoted and list(quoted.groups()), shown))
+
+    text = page_text("02-light-and-path-tracing")
+    quoted = re.search(r"means ([0-9.]+) and ([0-9.]+) in the figure's run", text).groups()
+    panels, buttons = press("02-light-and-path-tracing", "--maxdepth 1 --spp 4 --res 192x192")
+    shown = ["%.4f" % panels[e]["mean"] for e in ("lt --maxdepth 1", "pt --maxdepth 1")]
+    check(list(quoted) == shown, "page 2's button: lt's and pt's means as the page quotes them", "page %s, the page's panels %s" % (list(quoted), shown))
+
+    text = page_text("11-contributions-of-paths")
+    quoted = re.search(r"s2_t1 \(mean ([0-9.]+) of its weighted image, half of the whole image's ([0-9.]+)\)", text).groups()
+    panels, _ = press("11-contributions-of-paths", "scenes/indirect.scene --method bdpt --spp 64")
+    s2t1 = next(m for m in browser.js("bdptPage.strategyMeans()") if (m["s"], m["t"]) == (2, 1))
+    shown = ["%.3f" % s2t1["weighted"], "%.3f" % panels["bdpt"]["mean"]]
+    check(list(quoted) == shown, "page 11's button: s2_t1's weighted mean and the image's as the page quotes them", "page %s, the page's panels %s" % (list(quoted), shown))
+
+    text = page_text("13-shading-normals")
+    quoted = re.search(r"means ([0-9.]+) and ([0-9.]+) in the figure's run.*?\(([0-9.]+) against ([0-9.]+), the figure's", text).groups()
+    panels, _ = press("13-shading-normals", "scenes/energy-generator.scene --side-by-side")
+    shown = ["%.5f" % panels["nee"]["mean"], "%.5f" % panels["lt"]["mean"], "%.5f" % panels["nee"]["mean"],
+             "%.4g" % panels["nee tests/energy-generator-flat.scene"]["mean"]]
+    check(list(quoted) == shown, "page 13's button: the energy generator's means as the page quotes them", "page %s, the page's panels %s" % (list(quoted), shown))
+
+    # Every page's commands: a button each, and a reason on the ones the page cannot run.
+    total = runs = 0
+    for page in browser.js("BDPT_NOTES.map((p) => p.file)"):
+        browser.js("bdptPage.openNotes(%s)" % json.dumps(page))
+        buttons = browser.js("bdptPage.notesButtons()")
+        total, runs = total + len(buttons), runs + sum(b["runs"] for b in buttons)
+        check(all(b["runs"] or b["reason"] for b in buttons), "notes page %s: every command has a button or a reason" % page) if not all(b["runs"] or b["reason"] for b in buttons) else None
+    formulas, figures = browser.js("document.querySelectorAll('.katex').length"), 0
+    check(runs >= 40 and total > runs, "the notes' commands: the page runs %d of %d, and says where to run the others" % (runs, total))
+    for page in ("07-probabilities", "13-shading-normals", "15-vertex-merging"):
+        browser.js("bdptPage.openNotes(%s)" % json.dumps(page))
+        browser.wait_for("[...document.querySelectorAll('#notes-text img')].every((i) => i.complete)")
+        figures += browser.js("[...document.querySelectorAll('#notes-text img')].filter((i) => i.naturalWidth > 0).length")
+        formulas += browser.js("document.querySelectorAll('#notes-text .katex').length")
+        bad = browser.js("[...document.querySelectorAll('#notes-text img')].filter((i) => i.naturalWidth === 0).map((i) => i.src)")
+        check(not bad, "notes page %s: its figures load" % page, ", ".join(bad))
+    check(formulas >= 5 and figures >= 5, "the notes in the page: formulas typeset by KaTeX, figures shown", "%d formulas and %d figures on pages 7, 13, 15" % (formulas, figures))
+
+
+def dead_worker(browser):
+    # A worker that dies without a word (as one killed out of memory): its panel ends with a
+    # message after the silence limit (set short here), the others render on, Stop ends the run,
+    # and the next run renders in that slot again.
+    browser.js("bdptPage.setSilenceLimit(3000)")
+    browser.js("bdptPage.selectScene('scenes/cornell.scene')")
+    browser.js("bdptPage.setEntries(['pt', 'nee'])")
+    browser.js("bdptPage.setOptions({resolution: '64x64', spp: 0, seconds: 0, seed: 1})")
+    browser.js("bdptPage.run(); 0")
+    browser.wait_for("bdptPage.panels().length == 2 && bdptPage.panels().every((p) => p.passes > 0)")
+    browser.js("bdptPage.killWorker(1)")
+    try:  # 3 s of silence and the next second's look: a minute is a hang's guard
+        browser.wait_for("bdptPage.panels()[1].done", 60)
+    except RuntimeError:
+        pass
+    p = browser.js("bdptPage.panels()")
+    check("stopped answering" in (p[1]["error"] or "") and not p[0]["done"], "a killed worker: its panel ends with a message, the other renders on", repr(p[1]["error"]))
+    browser.js("bdptPage.killWorker(0)")
+    browser.js("bdptPage.stop()")
+    try:
+        browser.wait_for("!bdptPage.running()", 60)
+    except RuntimeError:
+        pass
+    p = browser.js("bdptPage.panels()")
+    check(p[0]["done"] and "did not answer" in (p[0]["error"] or ""), "Stop ends a run whose worker is dead", repr(p[0]["error"]))
+    browser.js("bdptPage.setSilenceLimit(20000)")
+    p = browser.run("scenes/cornell.scene", ["pt", "nee"], 2)
+    check(all(x["passes"] == 2 and not x["error"] for x in p), "the next run renders in the dead workers' slots")
+
+
+def layout_and_link(browser, url):
+    # No sideways scrolling at a laptop's and a phone's size, with six panels, the pyramid and a
+    # long notes page with tables; and a link that keeps the setting.
+    browser.js("bdptPage.openNotes('appendix-a-speed-and-accuracy')")
+    browser.run("scenes/cornell.scene", ["pt", "nee --mis", "lt", "ir --clamp 1e-5", "bdpt --heuristic power", "lt --no-adjoint-correction"], 1)
+    for w, h in ((1366, 768), (390, 844), (1920, 1080)):
+        browser.size(w, h)
+        o = browser.js("new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(() => r(bdptPage.overflow()))))")
+        check(o["scrollWidth"] <= o["innerWidth"], "%dx%d: nothing wider than the window" % (w, h), "page width %d in a window of %d" % (o["scrollWidth"], o["innerWidth"]))
+        browser.screenshot(os.path.join(OUT, "page-%dx%d.png" % (w, h)), w, h)
+    browser.js("bdptPage.openNotes('07-probabilities')")
+    browser.js("bdptPage.selectScene('scenes/refraction.scene')")
+    browser.js("bdptPage.setEntries(['lt', 'lt --symmetric-refraction'])")
+    browser.js("bdptPage.setOptions({resolution: '32x32', spp: 3, seconds: 0, seed: 5})")
+    browser.js("bdptPage.run()")
+    link = browser.js("location.href")
+    browser.open(url)  # a fresh page, then the link
+    browser.call("Page.navigate", url="about:blank")
+    browser.open(link)
+    got = browser.js("[document.getElementById('scene').value, [...document.querySelectorAll('input.entry')].map((e) => e.value).filter((e) => e), "
+                     "document.getElementById('resolution').value, document.getElementById('spp').value, document.getElementById('seed').value, "
+                     "document.getElementById('notes-page').value]")
+    check(got == ["scenes/refraction.scene", ["lt", "lt --symmetric-refraction"], "32x32", "3", "5", "07-probabilities"],
+          "a link to the page keeps its scene, methods, settings and notes page", repr(got))
+
+
+def from_a_file(browser):
+    # Opened from disk (file://): the workers start from a Blob, the wasm is inlined: it renders.
+    browser.open("file://" + os.path.join(ROOT, "build", "web", "index.html"))
+    panels = browser.run("scenes/cornell.scene", ["nee --mis"], 4)
+    _, _, img, _ = native("scenes/cornell.scene", "nee --mis", 4)
+    check(panels[0]["passes"] == 4 and close(panels[0]["mean"], mean(img)), "index.html opened from a file renders, ./bdpt's mean",
+          "page %.9g, ./bdpt %.9g" % (panels[0]["mean"], mean(img)))
+
+
+def speed(browser):
+    # One bdpt panel's samples per CPU second of the whole browser (its worker, the page that
+    # draws, the compositor), against ./bdpt --threads 1's per CPU second, with the strategies
+    # recorded on both sides as the page records them, and without. CPU seconds: a busy machine
+    # slows both alike.
+    for strategies in (True, False):
+        browser.js("bdptPage.setOptions({strategies: %s})" % ("true" if strategies else "false"))
+        cpu0 = process_cpu_seconds(browser.proc.pid)
+        panels = browser.run("scenes/cornell.scene", ["bdpt"], 0, seconds=4)
+        page_cpu = process_cpu_seconds(browser.proc.pid) - cpu0
+        extra = ("--strategies", os.path.join(OUT, "speed"), "--strategy-length", "4") if strategies else ()
+        out = os.path.join(OUT, "speed.png")
+        printed = subprocess.run(["./bdpt", "scenes/cornell.scene", "--method", "bdpt", "--res", "64x64", "--threads", "1", "--time", "4", "--out", out, *extra],
+                                 cwd=ROOT, check=True, capture_output=True, text=True).stdout
+        spp, cpu = re.search(r"(\d+) samples per pixel in [0-9.]+ s \(([0-9.]+) CPU s\)", printed).groups()
+        ratio = (panels[0]["passes"] / page_cpu) / (int(spp) / float(cpu))
+        check(ratio >= 0.5, "one bdpt panel%s: samples per CPU second of the whole browser >= 0.5x ./bdpt --threads 1's" % (" recording its strategies" if strategies else ""),
+              "%.2fx: page %d spp in %.2f CPU s, ./bdpt %s spp in %s CPU s" % (ratio, panels[0]["passes"], page_cpu, spp, cpu))
+    browser.js("bdptPage.setOptions({strategies: true})")
 
 
 if __name__ == "__main__":

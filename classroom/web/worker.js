@@ -1,33 +1,42 @@
-// One panel's render: a module instance of bdpt-web.wasm on this worker's own thread. The page
-// sends {type: "start", ...} and "stop"; the worker answers with a "frame" after every slice of
-// passes (the image so far, its samples, seconds and error) and "done" at the end. The page's
-// thread only draws. Passes run in slices of about 40 ms, so that a "stop" is read between them.
-importScripts("bdpt-web.js");
-
+// One panel's render: a module instance of the renderer (bdpt-web.cpp, whose loader precedes this
+// text in engine.js) on this worker's own thread. The page sends {type: "start", ...} and "stop";
+// the worker answers with a "frame" about five times a second (the image so far, its samples,
+// seconds and error) and "done" at the end. The page's thread only draws. The worker renders a
+// row at a time in slices of about 40 ms, so that a "stop" is read between them and a large
+// pass shows its rows as they come.
 let api = null;          // the module's functions, once it is loaded
 let job = null;          // the render in progress
 const pending = [];      // messages that came before the module
 
-const ready = createBdpt().then((module) => {
+createBdpt().then((module) => {
     const fn = (name, ret, args) => module.cwrap(name, ret, args);
     api = {
         module,
-        start: fn("bdpt_start", "string", ["string", "string", "string", "number", "number", "number", "number"]),
-        pass: fn("bdpt_pass", "number", []),
+        start: fn("bdpt_start", "string", ["string", "string", "string", "number", "number", "number", "number", "number", "number"]),
+        row: fn("bdpt_row", "number", []),
+        rowsDone: fn("bdpt_rows_done", "number", []),
+        snapshot: fn("bdpt_snapshot", null, []),
         image: fn("bdpt_image", "number", []),
         width: fn("bdpt_width", "number", []),
         height: fn("bdpt_height", "number", []),
+        spp: fn("bdpt_spp", "number", []),
+        seconds: fn("bdpt_seconds", "number", []),
+        threadsGiven: fn("bdpt_threads_given", "number", []),
         exposure: fn("bdpt_exposure", "number", []),
         nonFinite: fn("bdpt_non_finite", "number", []),
-        hasReference: fn("bdpt_has_reference", "number", []),
+        referenceWidth: fn("bdpt_reference_width", "number", []),
+        referenceHeight: fn("bdpt_reference_height", "number", []),
+        comparedWidth: fn("bdpt_compared_width", "number", []),
         mean: fn("bdpt_mean", "number", []),
         rmse: fn("bdpt_rmse", "number", []),
         rmseWithoutLamp: fn("bdpt_rmse_without_lamp", "number", []),
+        bias: fn("bdpt_bias", "number", []),
         strategies: fn("bdpt_strategies", "string", []),
         strategyImage: fn("bdpt_strategy_image", "number", ["number", "number"]),
         checkScene: fn("bdpt_check_scene", "string", ["string", "string"]),
+        help: fn("bdpt_help", "string", []),
     };
-    postMessage({ type: "ready" });
+    postMessage({ type: "ready", help: api.help() });
     for (const m of pending.splice(0)) onmessage({ data: m });
 });
 
@@ -46,42 +55,46 @@ function strategyImages(n) {
 }
 
 function frame(final) {
-    const w = api.width(), h = api.height(), n = 3 * w * h;
+    api.snapshot();
+    const w = api.width(), h = api.height(), n = 3 * w * h, compared = api.comparedWidth() > 0;
     const message = {
-        type: final ? "done" : "frame", id: job.id, width: w, height: h, passes: job.passes, seconds: job.seconds,
+        type: final ? "done" : "frame", id: job.id, width: w, height: h, passes: job.passes, rowsDone: api.rowsDone(), seconds: job.seconds,
         image: floats(api.image(), n), mean: api.mean(), nonFinite: api.nonFinite(),
-        rmse: api.hasReference() ? api.rmse() : null, rmseWithoutLamp: api.hasReference() ? api.rmseWithoutLamp() : null,
+        rmse: compared ? api.rmse() : null, rmseWithoutLamp: compared ? api.rmseWithoutLamp() : null, bias: compared ? api.bias() : null, comparedWidth: api.comparedWidth(),
         outOfMemory: job.outOfMemory,
     };
+    // The strategies change a little with every pass: sent once a second (and with a new pass at first).
     const now = performance.now();
-    if (job.strategies && (final || now - job.lastStrategies > 1000)) {
+    if (job.strategies && job.passes > job.strategyPasses && (final || now - job.lastStrategies > 1000 || job.strategyPasses === 0)) {
         job.lastStrategies = now;
+        job.strategyPasses = job.passes;
         message.strategies = strategyImages(n);
     }
     const transfer = [message.image.buffer];
     if (message.strategies) for (const s of message.strategies) transfer.push(s.unweighted.buffer, s.weighted.buffer);
     postMessage(message, transfer);
+    job.lastFrame = now;
 }
 
-// A slice of passes, then a yield through a message channel (setTimeout would wait 4 ms).
+// A slice of rows, then a yield through a message channel (setTimeout would wait 4 ms).
 const channel = new MessageChannel();
 channel.port1.onmessage = slice;
 function slice() {
     if (!job || job.stopped) return;
     const t0 = performance.now();
     do {
-        const t = performance.now();
-        const passes = api.pass();
-        job.seconds += (performance.now() - t) / 1000;
+        const passes = api.row();
         if (passes < 0) { job.outOfMemory = true; break; }
         job.passes = passes;
     } while (performance.now() - t0 < 40 && !finished());
+    job.seconds += (performance.now() - t0) / 1000;
     if (job.outOfMemory || finished()) { frame(true); job = null; return; }
-    frame(false);
+    if (performance.now() - job.lastFrame > 200) frame(false);
     channel.port2.postMessage(0);
 }
 function finished() {
-    return (job.spp > 0 && job.passes >= job.spp) || (job.limitSeconds > 0 && job.seconds >= job.limitSeconds);
+    if (api.rowsDone() > 0) return false;  // a pass ends whole
+    return (job.spp > 0 && job.passes >= job.spp) || (job.spp === 0 && job.limitSeconds > 0 && job.seconds >= job.limitSeconds);
 }
 
 onmessage = (event) => {
@@ -90,13 +103,16 @@ onmessage = (event) => {
     if (m.type === "check") {
         postMessage({ type: "checked", id: m.id, error: api.checkScene(m.sceneText, m.sceneName) });
     } else if (m.type === "start") {
-        const error = api.start(m.sceneText, m.sceneName, m.entry, m.width, m.height, m.seed, m.strategyLength);
+        const error = api.start(m.sceneText, m.sceneName, m.entry, m.width, m.height, m.spp, m.seconds, m.seed, m.strategyLength);
         if (error) { job = null; postMessage({ type: "error", id: m.id, error }); return; }
-        job = { id: m.id, spp: m.spp, limitSeconds: m.seconds, passes: 0, seconds: 0, strategies: m.strategyLength > 0 && api.strategies() !== "",
-                lastStrategies: -1e9, outOfMemory: false, stopped: false };
-        postMessage({ type: "started", id: m.id, exposure: api.exposure(), hasReference: !!api.hasReference(), strategies: job.strategies });
+        job = { id: m.id, spp: api.spp(), limitSeconds: api.seconds(), passes: 0, seconds: 0, strategies: m.strategyLength > 0 && api.strategies() !== "",
+                lastStrategies: -1e9, strategyPasses: 0, lastFrame: performance.now(), outOfMemory: false, stopped: false };
+        postMessage({ type: "started", id: m.id, exposure: api.exposure(), width: api.width(), height: api.height(), spp: job.spp, seconds: job.limitSeconds,
+                      referenceWidth: api.referenceWidth(), referenceHeight: api.referenceHeight(), strategies: job.strategies,
+                      threadsGiven: !!api.threadsGiven() });
         slice();
     } else if (m.type === "stop") {
         if (job) { job.stopped = true; frame(true); job = null; }
+        else postMessage({ type: "idle", id: m.id });
     }
 };
