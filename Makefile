@@ -256,6 +256,10 @@ build/efficiency: tests/efficiency.cpp tests/bench.h $(RENDERER) build/flags
 build/estimators: classroom/workshop/estimators.cpp tests/bench.h tests/densities.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
+# Pages 7 and 10M's paths worked with numbers (classroom/workshop/worked_path.cpp).
+build/worked-path: classroom/workshop/worked_path.cpp classroom/workshop/worked_path.h tests/bench.h $(RENDERER) build/flags
+	@mkdir -p build
+	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 # Uneven convergence (classroom/workshop/uneven.cpp): bdpt, mlt, pssmlt and mmlt per region on the door scene at
 # equal time, into build/ (make figures puts its figure into the notes).

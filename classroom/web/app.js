@@ -558,7 +558,9 @@ function choosePixel(x, y) {
     state.barsDirty = true;
     state.panels.forEach((p) => (p.dirty = true));
     drawAll();
-    if (innerWidth < 1100) $("bars-figure").scrollIntoView({ block: "nearest" });
+    const bars = $("bars-figure").getBoundingClientRect();
+    if (bars.top > innerHeight || bars.bottom < 0)  // out of sight: say where the click's answer is
+        showStatus(`Pixel (${x}, ${y}): its strategies are in the bar chart ${bars.top > innerHeight ? "below" : "above"} the panels`);
     return strategyBars();
 }
 function strategyBars() {

@@ -32,7 +32,7 @@ ALL_SCENES="cornell cornell-point cornell-glass glass-box indirect furnace refra
 SCENES=${SCENES:-$ALL_SCENES}
 LOGS=build/charts
 if [ -n "$NOTES" ]; then FIG=lecture_notes/figures; else FIG=$LOGS/figures; fi
-RECORD=lecture_notes/appendix-a-speed-and-accuracy.md  # where the generated tables go (NOTES=1)
+RECORD=lecture_notes/appendix-a-record.md  # where the generated tables go (NOTES=1)
 mkdir -p "$FIG" "$LOGS/refs" scenes/refs
 
 # gnuplot draws every chart and figure: missing, say so before any work (Debian: gnuplot-nox).
@@ -249,7 +249,7 @@ efficiencyRows() {
 }
 
 # make efficiency (tests/efficiency.cpp): its table in build/efficiency.md; with NOTES=1 also
-# lecture_notes/figures/efficiency.md, spliced into Appendix A, and page 16's rows of it.
+# lecture_notes/figures/efficiency.md, spliced into Appendix A's record, and page 16's rows of it.
 efficiency() {
   make -s build/efficiency
   local budget="--spp 64 --seeds 2" minutes=3
@@ -273,7 +273,7 @@ efficiency() {
 
 # make metropolis (tests/efficiency.cpp --metropolis): the Markov chains against bdpt, 8 seeds, into
 # build/metropolis.md, and Veach's table of mlt's mutations (--mutations) into build/mutations.md;
-# with NOTES=1 also lecture_notes/figures/metropolis.md and mutations.md, spliced into Appendix A.
+# with NOTES=1 also lecture_notes/figures/metropolis.md and mutations.md, spliced into Appendix A's record.
 metropolisTable() {
   make -s build/efficiency
   echo "metropolis: 8 seeds of bdpt, mlt, pssmlt and mmlt on door-hidden, door-side and cornell, one thread: about 50 minutes"
