@@ -29,7 +29,7 @@ endif
 TEST_FILES := $(wildcard tests/test_*.cpp)
 # ./bdpt is the lecture's renderer (bdpt.cpp) with the classroom's tools (classroom/), one compile.
 RENDERER := bdpt.cpp classroom/classroom.cpp $(wildcard classroom/*.h)
-TEST_HEADERS := tests/helpers.h tests/bench.h tests/densities.h
+TEST_HEADERS := tests/helpers.h tests/bench.h tests/densities.h classroom/workshop/worked_path.h
 
 all: bdpt
 

@@ -47,6 +47,16 @@ inline std::string slideCaption(const std::string& entry) {
     return it == captions.end() ? "" : it->second;
 }
 
+// The slides' captions belong to the slides' comparison: a figure of at least three methods the
+// slides caption differently. On another (two methods, one method's variants) a letter (b) or (c)
+// would point to a panel the figure does not have: the entry itself is the caption.
+inline bool showsTheSlidesPanels(const std::vector<std::unique_ptr<SideBySidePanel>>& panels) {
+    std::set<std::string> captions;
+    for (auto& panel : panels)
+        if (!slideCaption(panel->label).empty()) captions.insert(slideCaption(panel->label));
+    return captions.size() >= 3;
+}
+
 // The figure for a projector: a title over the panels, each panel's caption under its own image,
 // the images enlarged by the largest whole factor that fits 1920x1080, the canvas 16:9 (padded,
 // content centred). Tiles are the panels and, with --ratio-panel, the ratio after them.
@@ -159,7 +169,7 @@ inline bool comparesDeliberateMistake(const std::vector<std::unique_ptr<SideBySi
 inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const Image& ref,
                                                   const SideBySideLayout& L, const std::vector<std::string>& title, const std::string& ratioKind) {
     std::vector<unsigned char> canvas(size_t(L.canvasW) * L.canvasH * 3, 24);
-    const bool comparesMistake = comparesDeliberateMistake(panels);
+    const bool comparesMistake = comparesDeliberateMistake(panels), slides = showsTheSlidesPanels(panels);
     auto caption = [&](int tile, int line, const std::string& text) {
         drawLabel(canvas, L.canvasW, L.canvasH, L.tileX(tile), L.tileY(tile) + L.panelH + L.gap / 2 + line * 7 * L.scale, text, L.scale);
     };
@@ -170,7 +180,7 @@ inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<Si
         double seconds;
         panelMean(panel, mean, nullptr, passes, seconds);
         blitZoomed(canvas, L.canvasW, toSRGBBytes(mean, panel.cl.exposure), L.W, L.H, L.zoom, L.tileX(int(i)), L.tileY(int(i)));
-        const std::string slide = !ratioKind.empty() && comparesMistake ? (i == 0 ? "right" : "deliberate mistake") : slideCaption(panel.label);
+        const std::string slide = !ratioKind.empty() && comparesMistake ? (i == 0 ? "right" : "deliberate mistake") : slides ? slideCaption(panel.label) : "";
         std::string counts = passes > 0 ? std::to_string(passes) + " spp, " + threeDigits(seconds) + " CPU s" : "starting";
         caption(int(i), 0, slide.empty() ? panel.label : slide);
         caption(int(i), 1, slide.empty() ? counts : panel.label + ": " + counts);

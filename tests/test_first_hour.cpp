@@ -642,6 +642,10 @@ TEST_CASE("--side-by-side: the slides' captions are drawn under their panels, re
              "--out", "build/tmp/fh_captions_later.png"});
     REQUIRE(r.status == 0);
     CHECK(captionsFound("build/tmp/fh_captions_later.png", later) == 3);
+    // A figure of two methods is not the slides' comparison: no letter points to a panel it lacks.
+    r = run({"scenes/cornell.scene", "--res", "32x32", "--spp", "1", "--side-by-side", "lt,pt", "--quiet", "--out", "build/tmp/fh_captions_two.png"});
+    REQUIRE(r.status == 0);
+    CHECK(captionsFound("build/tmp/fh_captions_two.png", {"(c) Next event (light tracing)", "(a) Unidirectional (eye tracing)"}) == 0);
 }
 
 // --ratio-panel mean: the mistaken entry over the right one. Light tracing through water with the

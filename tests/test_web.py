@@ -379,10 +379,12 @@ def six_panels(browser):
     before = browser.js("bdptPage.pyramidRedraws() || 0")
     panels = browser.run("scenes/cornell.scene", ["pt", "nee --mis", "lt", "ir --clamp 1e-5", "bdpt --heuristic power", "vcm"], 0, seconds=2)
     curves = browser.js("bdptPage.chartCurves()")
-    falling = [p["entry"] for p in panels if len(p["curve"]) >= 2 and p["curve"][-1][1] < p["curve"][0][1]]
-    drawn_falling = [c["entry"] for c in curves if c["points"][-1][1] > c["points"][0][1]]  # SVG y grows downwards
-    check(sorted(c["entry"] for c in curves) == sorted(p["entry"] for p in panels) and len(falling) == 6 and len(drawn_falling) == 6,
-          "six panels at 2 s: the chart has one curve per panel, each falling",
+    # Clamped ir's error is its bias, which time does not remove: its curve need not fall.
+    unbiased = [p for p in panels if p["entry"] != "ir --clamp 1e-5"]
+    falling = [p["entry"] for p in unbiased if len(p["curve"]) >= 2 and p["curve"][-1][1] < p["curve"][0][1]]
+    drawn_falling = [c["entry"] for c in curves if c["entry"] != "ir --clamp 1e-5" and c["points"][-1][1] > c["points"][0][1]]  # SVG y grows downwards
+    check(sorted(c["entry"] for c in curves) == sorted(p["entry"] for p in panels) and len(falling) == 5 and len(drawn_falling) == 5,
+          "six panels at 2 s: the chart has one curve per panel, the unbiased methods' falling",
           ", ".join("%s %d points %.3g -> %.3g" % (p["entry"], len(p["curve"]), p["curve"][0][1], p["curve"][-1][1]) for p in panels if p["curve"]))
     redraws, frames = browser.js("bdptPage.pyramidRedraws()") - before, sum(len(p["curve"]) for p in panels)
     check(redraws <= 12, "the pyramid is redrawn when its strategies change, not at every frame",

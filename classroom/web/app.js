@@ -670,7 +670,7 @@ const FIGURE_OPTIONS = ["--out", "--title", "--ratio-panel", "--ref", "--strateg
 const FLAGS = ["--overwrite", "--quiet", "--profile"];
 function parseCommand(line) {
     const words = splitWords(line.trim());
-    if (words[0] !== "./bdpt") return { reason: "a terminal's command: run it from the repository's folder" };
+    if (words[0] !== "./bdpt") return { reason: "run it in a terminal, in the repository's folder" };
     if (words.includes("--ratio")) return { reason: "--ratio compares two files: run it in a terminal after the renders" };
     const settings = { scene: null, entries: null, method: null, spp: 0, seconds: 0, resolution: "0x0", seed: 1, shared: [], notes: [] };
     for (let i = 1; i < words.length; ++i) {
@@ -736,7 +736,7 @@ function addCommandButtons(root) {
         bar.className = "commands";
         for (const line of lines) {
             const parsed = parseCommand(line);
-            const b = document.createElement("button");
+            const b = document.createElement(parsed.settings ? "button" : "span");
             b.className = "run-command";
             if (parsed.settings) {
                 const n = parsed.settings.entries.length;
@@ -745,9 +745,8 @@ function addCommandButtons(root) {
                 b.dataset.command = line;
                 b.onclick = () => { runSettings(parsed.settings); if (innerWidth < 1100) $("panels").scrollIntoView(); };
             } else {
-                b.textContent = "in a terminal";
-                b.disabled = true;
-                b.title = parsed.reason;
+                b.textContent = `${line.trim().split(" ").slice(0, 2).join(" ")}: ${parsed.reason}`;
+                b.classList.add("terminal");
                 b.dataset.command = line;
                 b.dataset.reason = parsed.reason;
             }
@@ -889,7 +888,7 @@ window.bdptPage = {
         return [...$("bars").querySelectorAll("rect")].map((b) => ({ strategy: b.dataset.strategy, kind: b.dataset.kind, value: Number(b.dataset.value) }));
     },
     openNotes,
-    notesButtons: () => [...document.querySelectorAll("#notes-text button.run-command")].map((b) => ({ command: b.dataset.command, runs: !b.disabled, reason: b.dataset.reason || "" })),
+    notesButtons: () => [...document.querySelectorAll("#notes-text .run-command")].map((b) => ({ command: b.dataset.command, runs: b.tagName === "BUTTON", reason: b.dataset.reason || "" })),
     clickNotesButton: (command) => {
         const b = [...document.querySelectorAll("#notes-text button.run-command")].find((x) => x.dataset.command === command);
         if (!b || b.disabled) return false;

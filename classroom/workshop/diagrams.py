@@ -248,7 +248,55 @@ def mirror():  # page 10M: a mirror unfolded, and one interface
     svg.save("path-mirror.svg")
 
 
+def pinhole():  # page 5: the film at distance 1, dA = d omega / cos^3, W_e = 1/(A cos^4)
+    svg = Svg(860, 380, "The pinhole's film at distance 1")
+    eye, axis_end = (90, 250), (520, 250)
+    svg.line(eye, axis_end, GREY, 2, dash="6,5")
+    svg.items.append('<line x1="390" y1="70" x2="390" y2="330" stroke="#555555" stroke-width="4"/>')  # the film, distance 1
+    scene = (800, 22)  # the ray at theta: it meets the film 1/cos theta away, at y = 154
+    svg.line(eye, towards(eye, scene, 4), CAMERA, arrow=True)
+    svg.pinhole((eye[0] - 26, eye[1]))
+    svg.dot(eye, INK, 5)
+    svg.items.append('<rect x="385" y="142" width="10" height="24" fill="#e6b800" stroke="#000000"/>')  # dA on the film
+    svg.items.append('<path d="M150,250 A60,60 0 0,0 145,225" fill="none" stroke="#000000" stroke-width="1.5"/>')
+    svg.text((170, 236), "theta", INK, anchor="start", size=15)
+    svg.text((240, 272), "1 (the film's distance)", GREY, size=14)
+    svg.text((236, 172), "1 / cos theta", CAMERA, size=15)
+    svg.text((402, 190), "dA (a film patch)", INK, anchor="start", size=15)
+    svg.text((390, 352), "film, area A (the image rectangle)", INK, size=15)
+    svg.text((60, 300), "pinhole", INK, anchor="start", size=15)
+    svg.text((430, 30), "dA, seen from the pinhole 1/cos theta away and tilted by theta:", INK, size=16)
+    svg.text((430, 52), "d omega = dA cos theta / (1/cos theta)^2 = dA cos^3 theta", INK, size=15)
+    svg.text((600, 230), "a uniform film point, p_A = 1/A:", INK, anchor="start", size=15)
+    svg.text((600, 252), "p_omega = 1 / (A cos^3 theta)", INK, anchor="start", size=15)
+    svg.text((600, 286), "W_e = 1 / (A cos^4 theta):", INK, anchor="start", size=15)
+    svg.text((600, 308), "W_e cos theta / p_omega = 1", INK, anchor="start", size=15)
+    svg.save("path-pinhole.svg")
+
+
+def shading():  # page 13: n_g, n_s, a grazing direction, the slide's apparent areas
+    svg = Svg(900, 380, "A shading normal and a grazing direction")
+    svg.wall((60, 280), (560, 280))
+    x = (300, 280)
+    svg.line(x, (300, 90), INK, 2.5, arrow=True)  # n_g
+    svg.line(x, (400, 110), LIGHT, 2.5, arrow=True)  # n_s, tilted toward the light
+    svg.text((292, 84), "n_g (the surface's)", INK, anchor="end", size=15)
+    svg.text((408, 106), "n_s (the shading normal)", LIGHT, anchor="start", size=15)
+    light = (680, 240)  # the light arrives at grazing incidence: |w . n_g| = 0.10, |w . n_s| = 0.60
+    svg.line(light, towards(light, x, 8), CAMERA, arrow=True)
+    svg.text((690, 246), "w (grazing)", CAMERA, anchor="start", size=15)
+    svg.items.append('<rect x="260" y="276" width="80" height="8" fill="#e6b800" stroke="#000000"/>')  # dA
+    svg.text((300, 310), "dA", INK, size=15)
+    # What w sees of dA, as bars in proportion: dA |w . n_g| (the geometry), dA |w . n_s| (as n_s has it).
+    svg.line((600, 340), (600, 330), INK, 6)
+    svg.text((612, 342), "dA |w . n_g|: apparently small", INK, anchor="start", size=14)
+    svg.line((600, 200), (600, 140), LIGHT, 6)
+    svg.text((612, 176), "dA |w . n_s|: apparently much larger", LIGHT, anchor="start", size=14)
+    svg.text((450, 30), "Light arrives over the small area the geometry shows and leaves as from the", INK, size=15)
+    svg.text((450, 52), "larger one n_s shows: the factor |w . n_s| / |w . n_g| has no bound", INK, size=15)
+    svg.save("path-shading-normal.svg")
+
 if __name__ == "__main__":
-    for draw in (bdpt, densities, formulation, strategies, merge, mutation, mirror):
+    for draw in (bdpt, densities, formulation, strategies, merge, mutation, mirror, pinhole, shading):
         draw()
-    print("wrote lecture_notes/figures/path-{bdpt,densities,formulation,strategies,merge,mutation,mirror}.svg")
+    print("wrote lecture_notes/figures/path-{bdpt,densities,formulation,strategies,merge,mutation,mirror,pinhole,shading-normal}.svg")
