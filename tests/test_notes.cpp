@@ -1113,7 +1113,7 @@ TEST_CASE("pages 7 and 10M show build/worked-path's tables, line for line, and t
     // column (page 7's walk), read back from the printed table.
     std::vector<std::vector<double>> vertices, strategies;
     for (const Quote& q : quotes) {
-        if (q.page != "07-probabilities.md" || q.text.rfind("| x_", 0) != 0 && !std::isdigit(static_cast<unsigned char>(q.text[2]))) continue;
+        if (q.page != "07-probabilities.md" || (q.text.rfind("| x_", 0) != 0 && !std::isdigit(static_cast<unsigned char>(q.text[2])))) continue;
         std::vector<double> cells;
         std::istringstream in(q.text);
         for (std::string cell; std::getline(in, cell, '|');) {
