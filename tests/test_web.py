@@ -483,7 +483,7 @@ def dead_worker(browser):
         pass
     p = browser.js("bdptPage.panels()")
     check(p[0]["done"] and "did not answer" in (p[0]["error"] or ""), "Stop ends a run whose worker is dead", repr(p[0]["error"]))
-    browser.js("bdptPage.setSilenceLimit(20000)")
+    browser.js("bdptPage.setSilenceLimit(60000)")
     p = browser.run("scenes/cornell.scene", ["pt", "nee"], 2)
     check(all(x["passes"] == 2 and not x["error"] for x in p), "the next run renders in the dead workers' slots")
 

@@ -79,7 +79,7 @@ const state = {
     nextId: 1,
     whenDone: null,       // resolves run()'s promise
     notesPage: null,
-    silenceLimitMs: 20000,  // a running panel's worker silent this long has died (watchWorkers)
+    silenceLimitMs: 60000,  // a running panel's worker silent this long has died (watchWorkers)
     loading: true,          // until loadState has read the link: nothing overwrites it before
 };
 
@@ -168,8 +168,9 @@ function endPanel(panel, message) {
     if (!panel.image) panel.canvas.hidden = true;
     panel.el.querySelector(".stats").textContent = panel.passes ? panel.el.querySelector(".stats").textContent : "";
 }
-// A running panel whose worker has said nothing for 20 s has lost it (a slice takes 40 ms, a
-// frame comes every 200 ms: 20 s is a hundred times that, on a busy machine too).
+// A running panel whose worker has said nothing for 60 s has lost it. A slice takes 40 ms and a
+// frame comes every 200 ms, but a pass begins in one call, and mmlt's bootstrap at 128x128 takes
+// about 3 CPU s of it (natively): with six panels on a busy 2-core machine, ten times that.
 function watchWorkers() {
     const now = performance.now();
     for (const p of state.panels)
@@ -698,6 +699,7 @@ function parseCommand(line) {
     }
     if (list.length > MAX_PANELS) return { reason: `more than ${MAX_PANELS} panels` };
     settings.entries = list;
+    if (!settings.spp && !settings.seconds) settings.spp = 16;  // ./bdpt's default
     return { settings };
 }
 function applySettings(s) {
