@@ -2993,15 +2993,20 @@ struct Rendering {
     }
     // The same pass in three steps, for a caller that shows a pass's rows as they come (the page).
     void beginPass() {
-        raysBefore = gRaysTraced, cpuBefore = threadCpuSeconds() + gWorkerCpuSeconds, rowsDone = 0;
+        raysBefore = gRaysTraced;
+        cpuBefore = threadCpuSeconds() + gWorkerCpuSeconds;
+        rowsDone = 0;
         passData = preparePass(scene, opt, result.passes, threads, storage);
     }
     void renderRow(int y) {
         const int W = scene.camera.width, p = result.passes;
         const SampleFunction sample = sampleFunction(opt.method);
         RowOutput& row = rows[y];
-        row.splats.clear(), row.strategySplats.clear();
-        row.strategyMaxLength = opt.strategyMaxLength, row.nonFinite = 0, row.energyUnclamped = row.energyClamped = 0;
+        row.splats.clear();
+        row.strategySplats.clear();
+        row.strategyMaxLength = opt.strategyMaxLength;
+        row.nonFinite = 0;
+        row.energyUnclamped = row.energyClamped = 0;
         for (int x = 0; x < W; ++x) {
             Rng rng = sampleRng(opt, kCameraStream, uint64_t(y) * W + x, uint64_t(p));
             Vec3 v = sample(scene, opt, passData, x, y, rng, row);
@@ -3011,9 +3016,11 @@ struct Rendering {
         rowsDone.fetch_add(1, std::memory_order_relaxed);
     }
     void endPass() {
-        result.rays.closest += gRaysTraced.closest - raysBefore.closest, result.rays.shadow += gRaysTraced.shadow - raysBefore.shadow;
+        result.rays.closest += gRaysTraced.closest - raysBefore.closest;
+        result.rays.shadow += gRaysTraced.shadow - raysBefore.shadow;
         film.addPass(pass, rows, result);
-        result.passes += 1, result.cpuSeconds += threadCpuSeconds() + gWorkerCpuSeconds - cpuBefore;
+        result.passes += 1;
+        result.cpuSeconds += threadCpuSeconds() + gWorkerCpuSeconds - cpuBefore;
     }
     RenderResult finish() {
         result.seconds = secondsSince(start);
