@@ -67,7 +67,6 @@ const state = {
     workers: [],          // one per panel slot
     workerURL: null,
     ready: 0,
-    help: "",
     panels: [],           // the running or finished panels
     running: false,
     run: null,            // the options the run started with (the status and file names keep them)
@@ -166,7 +165,7 @@ function endPanel(panel, message) {
     panel.error = message;
     panel.el.querySelector(".error").textContent = message;
     if (!panel.image) panel.canvas.hidden = true;
-    panel.el.querySelector(".stats").textContent = panel.passes ? panel.el.querySelector(".stats").textContent : "";
+    if (!panel.passes) panel.el.querySelector(".stats").textContent = "";
 }
 // A running panel whose worker has said nothing for 60 s has lost it. A slice takes 40 ms and a
 // frame comes every 200 ms, but a pass begins in one call, and mmlt's bootstrap at 128x128 takes
@@ -182,7 +181,6 @@ function onWorkerMessage(slot, m) {
     worker.lastMessage = performance.now();
     if (m.type === "ready") {
         worker.isReady = true;
-        state.help = m.help;
         $("help-text").textContent = m.help;
         if (++state.ready === MAX_PANELS) { $("start").disabled = state.running; showStatus("Ready: choose a scene and methods (or a lesson under Show), then Start (Space)."); }
         return;
@@ -666,14 +664,13 @@ function splitWords(line) {
     line.replace(/"([^"]*)"|'([^']*)'|(\S+)/g, (_, a, b, c) => words.push(a ?? b ?? c));
     return words;
 }
-const PAGE_OPTIONS = ["--spp", "--time", "--wall-time", "--res", "--seed"];
 const FIGURE_OPTIONS = ["--out", "--title", "--ratio-panel", "--ref", "--strategies", "--log", "--live", "--strategy-length"];
 const FLAGS = ["--overwrite", "--quiet", "--profile"];
 function parseCommand(line) {
     const words = splitWords(line.trim());
     if (words[0] !== "./bdpt") return { reason: "run it in a terminal, in the repository's folder" };
     if (words.includes("--ratio")) return { reason: "--ratio compares two files: run it in a terminal after the renders" };
-    const settings = { scene: null, entries: null, method: null, spp: 0, seconds: 0, resolution: "0x0", seed: 1, shared: [], notes: [] };
+    const settings = { scene: null, entries: null, method: null, spp: 0, seconds: 0, resolution: "0x0", seed: 1, shared: [] };
     for (let i = 1; i < words.length; ++i) {
         const w = words[i], v = words[i + 1];
         if (w === "--side-by-side") settings.entries = v.split(",").map((e) => e.trim()), ++i;
@@ -682,7 +679,6 @@ function parseCommand(line) {
         else if (w === "--time" || w === "--wall-time") settings.seconds = Number(v), ++i;
         else if (w === "--res") settings.resolution = v, ++i;
         else if (w === "--seed") settings.seed = Number(v), ++i;
-        else if (w === "--threads") { settings.notes.push("--threads: one thread a panel here"); ++i; }
         else if (FIGURE_OPTIONS.includes(w)) ++i;
         else if (FLAGS.includes(w)) { if (w === "--profile") return { reason: "--profile prints a terminal's table: run it in a terminal" }; }
         else if (!w.startsWith("--") && w.endsWith(".scene") && !settings.scene) settings.scene = w;
