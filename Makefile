@@ -29,7 +29,7 @@ endif
 TEST_FILES := $(wildcard tests/test_*.cpp)
 # ./bdpt is the lecture's renderer (bdpt.cpp) with the classroom's tools (classroom/), one compile.
 RENDERER := bdpt.cpp classroom/classroom.cpp $(wildcard classroom/*.h)
-TEST_HEADERS := tests/helpers.h tests/bench.h tests/densities.h classroom/workshop/worked_path.h
+TEST_HEADERS := tests/helpers.h tests/lecture_test.h tests/bench.h tests/rays.h classroom/workshop/workshop.h classroom/workshop/densities.h classroom/workshop/worked_path.h
 
 all: bdpt
 
@@ -65,20 +65,25 @@ build/all_tests: tests/all_tests.cpp $(TEST_FILES) $(RENDERER) $(TEST_HEADERS) b
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 # The BVH tests once more as built by NATIVE=1 (8-wide AVX nodes where the CPU has AVX), and as
-# on a CPU without SSE (the scalar box test); at -O1 without debug information, which halves their
-# compile and leaves the arithmetic (no fast-math, no fused multiply-adds) as it is.
-build/native/test_bvh: tests/test_bvh.cpp $(RENDERER) tests/helpers.h tests/bench.h build/flags
+# on a CPU without SSE (the scalar box test); the lecture alone (tests/lecture_test.h: no
+# classroom) and of it only the BVH's tests (BDPT_BVH_ONLY), at -O1 without debug information,
+# which leaves the arithmetic (no fast-math, no fused multiply-adds) as it is: a sixth of the
+# compile time of the whole renderer at -O2.
+BVH_TEST := tests/test_bvh.cpp bdpt.cpp tests/lecture_test.h tests/rays.h build/flags
+build/native/test_bvh: $(BVH_TEST)
 	@mkdir -p build/native
-	$(CXX) $(filter-out -O2 -g,$(CXXFLAGS)) -O1 $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
-build/scalar/test_bvh: tests/test_bvh.cpp $(RENDERER) tests/helpers.h tests/bench.h build/flags
+	$(CXX) $(filter-out -O2 -g,$(CXXFLAGS)) -O1 $(NATIVE_FLAGS) -DBDPT_BVH_ONLY -I. -o $@ $< $(LDLIBS)
+build/scalar/test_bvh: $(BVH_TEST)
 	@mkdir -p build/scalar
-	$(CXX) $(filter-out -O2 -g,$(CXXFLAGS)) -O1 -U__SSE2__ -U__AVX__ -I. -o $@ $< $(LDLIBS)
+	$(CXX) $(filter-out -O2 -g,$(CXXFLAGS)) -O1 -U__SSE2__ -U__AVX__ -DBDPT_BVH_ONLY -I. -o $@ $< $(LDLIBS)
 
 # It says what it compiles before it does (about a minute of 2 cores), and its last lines give the
-# whole time, compiling included, and the count.
-TEST_PROGRAMS := bdpt build/bdpt-lecture build/all_tests build/native/test_bvh build/scalar/test_bvh
+# whole time, compiling included, and the count. The test program holds ./bdpt's main too: a test
+# of the running program (Ctrl-C, --live, a memory limit) starts it as ./bdpt (tests/helpers.h),
+# so the renderer with the classroom is compiled once, not twice.
+TEST_PROGRAMS := build/bdpt-lecture build/all_tests build/native/test_bvh build/scalar/test_bvh
 test:
-	@echo "make test: compiling ./bdpt, bdpt.cpp alone and the test programs (about a minute), then the tests"
+	@echo "make test: compiling bdpt.cpp alone and the test programs (about a minute), then the tests"
 	@export TEST_START=$$(date +%s); $(MAKE) --no-print-directory -s $(TEST_PROGRAMS) && \
 	  tests/run_tests.sh build/all_tests build/native/test_bvh build/scalar/test_bvh
 
@@ -132,6 +137,10 @@ help:
 	@echo "Durations: wall-clock on an idle 2-core machine, CPU where said. Budgets (--time, the charts' runs) are CPU"
 	@echo "seconds: a busy machine gives the same figures, later."
 	@echo "make test       every test file, one line each (about 4 CPU minutes, 2.5 minutes); make test-sanitize (about 12 minutes)"
+	@echo "make homework   a student's folder, build/homework/: bdpt.cpp with the tasks cut out, a README, make grade"
+	@echo "                (TASKS=\"H2 H5\": some; seconds, and 10 s the first time for the grader's data)"
+	@echo "make grade      grades build/homework/bdpt.cpp, or HOMEWORK=path/to/bdpt.cpp, by the physics (20 s)"
+	@echo "make test-homework  the grader against the solution, the stubs and 27 mistakes (about 9 CPU minutes, 5 minutes)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
 	@echo "make class      a class's figures for a projector (six panels at equal samples and time, pyramid,"
 	@echo "                mistakes, sds, Metropolis, error-vs-time charts): build/class/ (6.5 CPU minutes, 4.5 minutes;"
@@ -148,7 +157,7 @@ help:
 	@echo "make web        the page in the browser, the notes beside the methods: build/web/ (about 30 s; emscripten, libjs-katex, libjs-marked)"
 	@echo "make serve-web  make web, then serves it at http://localhost:8000/ (PORT=...)"
 	@echo "make test-web   the page in headless chromium against ./bdpt and the notes' numbers, from a file, a dead worker, phone and laptop sizes (about a minute)"
-	@echo "make bench-web  WebAssembly's time per sample against ./bdpt's, one thread each (about a minute)"
+	@echo "make bench-web  WebAssembly's time per sample against ./bdpt's, one thread each, under Node and in chromium (about 2 minutes)"
 	@echo "make fuzz       the scene parser under libFuzzer for FUZZ_SECONDS (60); make clean"
 
 # The page in the browser (classroom/web/): the renderer compiled to WebAssembly by Debian's
@@ -203,12 +212,14 @@ test-web: web bdpt build/bdpt-lecture
 	/usr/bin/python3 tests/test_web.py
 
 # make bench-web: time per sample of the WebAssembly build (under Node, one thread) against
-# ./bdpt on one thread, cornell with bdpt, interleaved runs, medians of CPU seconds.
+# ./bdpt on one thread, cornell with bdpt, interleaved runs, medians of CPU seconds; then a panel
+# of the page in chromium against ./bdpt, samples per CPU second (printed: a benchmark, no test).
 build/web-bench/bdpt.js: bdpt.cpp
 	@mkdir -p build/web-bench
 	NODE_PATH=/usr/share/nodejs em++ $(WEB_FLAGS) -o $@ bdpt.cpp -sNODERAWFS=1 -sALLOW_MEMORY_GROWTH=1 -sSINGLE_FILE=1
-bench-web: bdpt build/web-bench/bdpt.js
+bench-web: web bdpt build/web-bench/bdpt.js
 	tests/bench_web.sh
+	/usr/bin/python3 tests/test_web.py --bench
 
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it too).
 SANITIZE := -O1 -g -std=c++17 -Wall -Wextra -pthread -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
@@ -233,13 +244,13 @@ fuzz: build/fuzz_scene
 # The BVH against Embree on the same rays (tests/bench.sh). Embree's half is built only where
 # Debian's libembree-dev is installed.
 EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
-build/bench_rays: tests/bench_rays.cpp tests/bench.h $(RENDERER) build/flags
+build/bench_rays: tests/bench_rays.cpp $(TEST_HEADERS) $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
-build/native/bench_rays: tests/bench_rays.cpp tests/bench.h $(RENDERER) build/flags
+build/native/bench_rays: tests/bench_rays.cpp $(TEST_HEADERS) $(RENDERER) build/flags
 	@mkdir -p build/native
 	$(CXX) $(CXXFLAGS) $(NATIVE_FLAGS) -I. -o $@ $< $(LDLIBS)
-build/embree_rays: tests/embree_rays.cpp tests/bench.h $(RENDERER) build/flags
+build/embree_rays: tests/embree_rays.cpp $(TEST_HEADERS) $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS) -lembree3
 
@@ -248,22 +259,22 @@ bench: bdpt build/bench_rays build/native/bench_rays $(if $(EMBREE),build/embree
 	tests/bench.sh
 
 # Error at equal samples and efficiency 1/(MSE x CPU-s) of every method (tests/efficiency.cpp).
-build/efficiency: tests/efficiency.cpp tests/bench.h $(RENDERER) build/flags
+build/efficiency: tests/efficiency.cpp $(TEST_HEADERS) $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 # The densities of page 10's "Combination of Estimators: Example" (classroom/workshop/estimators.cpp).
-build/estimators: classroom/workshop/estimators.cpp tests/bench.h tests/densities.h $(RENDERER) build/flags
+build/estimators: classroom/workshop/estimators.cpp classroom/workshop/workshop.h classroom/workshop/densities.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 # Pages 7 and 10M's paths worked with numbers (classroom/workshop/worked_path.cpp).
-build/worked-path: classroom/workshop/worked_path.cpp classroom/workshop/worked_path.h tests/bench.h $(RENDERER) build/flags
+build/worked-path: classroom/workshop/worked_path.cpp classroom/workshop/worked_path.h classroom/workshop/workshop.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 
 # Uneven convergence (classroom/workshop/uneven.cpp): bdpt, mlt, pssmlt and mmlt per region on the door scene at
 # equal time, into build/ (make figures puts its figure into the notes).
-build/uneven: classroom/workshop/uneven.cpp tests/bench.h $(RENDERER) build/flags
+build/uneven: classroom/workshop/uneven.cpp classroom/workshop/workshop.h $(RENDERER) build/flags
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 uneven: build/uneven
@@ -273,4 +284,54 @@ uneven: build/uneven
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize web serve-web test-web bench-web fuzz bench efficiency metropolis uneven refs charts panels class figures help clean FORCE
+.PHONY: all run test test-sanitize test-homework homework grade web serve-web test-web bench-web fuzz bench efficiency metropolis uneven refs charts panels class figures help clean FORCE
+
+# ---- Homework (classroom/homework/): tasks cut from bdpt.cpp, graded by the physics.
+# make homework [TASKS="H2 H5"]: the student's folder build/homework/ (bdpt.cpp with the tasks'
+# bodies as TODOs and stubs, the scenes, README.md, a Makefile with make and make grade, the
+# grader and its data, which the complete renderer makes once: build/homework-data/).
+# make grade [HOMEWORK=path/to/bdpt.cpp]: grades that file (by default build/homework/bdpt.cpp)
+# against the same data. make test-homework: the solution full marks, the stubs none, every
+# mistake of tests/homework/mistakes.txt named and no other task's points lost.
+build/homework-tools/cut: classroom/homework/cut.cpp
+	@mkdir -p build/homework-tools
+	$(CXX) -O1 -std=c++17 -Wall -Wextra -o $@ $<
+build/homework-tools/grade-solution: classroom/homework/grade.cpp bdpt.cpp build/flags
+	@mkdir -p build/homework-tools
+	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
+HOMEWORK_DATA_INPUTS := scenes/refs/cornell.pfm scenes/refs/cornell-point.pfm tests/refs/cornell-direct.pfm scenes/cornell.scene scenes/energy-generator.scene
+build/homework-data/numbers.txt: build/homework-tools/grade-solution $(HOMEWORK_DATA_INPUTS)
+	@echo "make homework: the grader's data, rendered once by the complete renderer (about 10 seconds)"
+	@rm -rf build/homework-data.tmp
+	build/homework-tools/grade-solution --write-data build/homework-data.tmp
+	@rm -rf build/homework-data && mv build/homework-data.tmp build/homework-data
+HOMEWORK_DIR ?= build/homework
+homework: build/homework-tools/cut build/homework-data/numbers.txt
+	@if [ -f $(HOMEWORK_DIR)/bdpt.cpp ] && ! cmp -s $(HOMEWORK_DIR)/bdpt.cpp $(HOMEWORK_DIR)/grader/handed-out.cpp; then \
+	  echo "make homework: $(HOMEWORK_DIR)/bdpt.cpp has been worked on since it was handed out: move $(HOMEWORK_DIR) away first (nothing written)"; exit 1; fi
+	@rm -rf $(HOMEWORK_DIR).tmp && mkdir -p $(HOMEWORK_DIR).tmp/grader $(HOMEWORK_DIR).tmp/scenes
+	@build/homework-tools/cut classroom/homework/tasks bdpt.cpp $(HOMEWORK_DIR).tmp "$(TASKS)" | sed 's|$(HOMEWORK_DIR).tmp/|$(HOMEWORK_DIR)/|'
+	@cp scenes/*.scene $(HOMEWORK_DIR).tmp/scenes/
+	@cp -r lecture_notes $(HOMEWORK_DIR).tmp/
+	@cp classroom/homework/grade.cpp $(HOMEWORK_DIR).tmp/grader/
+	@cp -r build/homework-data $(HOMEWORK_DIR).tmp/grader/data
+	@cp classroom/homework/Makefile.student $(HOMEWORK_DIR).tmp/Makefile
+	@cp $(HOMEWORK_DIR).tmp/bdpt.cpp $(HOMEWORK_DIR).tmp/grader/handed-out.cpp
+	@rm -rf $(HOMEWORK_DIR) && mv $(HOMEWORK_DIR).tmp $(HOMEWORK_DIR)
+HOMEWORK ?= build/homework/bdpt.cpp
+grade: build/homework-tools/cut build/homework-data/numbers.txt
+	@test -f "$(HOMEWORK)" || { echo "make grade: no $(HOMEWORK) (make homework writes build/homework/; or make grade HOMEWORK=path/to/bdpt.cpp)"; exit 2; }
+	@mkdir -p build/homework-grade
+	@echo "make grade: compiling the grader with $(HOMEWORK) (about 15 seconds)"
+	@$(CXX) $(CXXFLAGS) -I$(dir $(HOMEWORK)) -o build/homework-grade/grade classroom/homework/grade.cpp $(LDLIBS) || \
+	  { echo "make grade: $(HOMEWORK) does not compile with the grader (the compiler's first message above): no task is graded until it does"; exit 1; }
+	@if [ -f $(dir $(HOMEWORK))grader/tasks.txt ]; then cp $(dir $(HOMEWORK))grader/tasks.txt build/homework-grade/tasks.txt; \
+	  else build/homework-tools/cut classroom/homework/tasks --list "$(TASKS)" > build/homework-grade/tasks.txt; fi
+	@build/homework-grade/grade --data build/homework-data --tasks build/homework-grade/tasks.txt $(if $(TASK),--task $(TASK))
+
+build/test_homework: tests/homework/test_homework.cpp
+	@mkdir -p build
+	$(CXX) -O1 -std=c++17 -Wall -Wextra -o $@ $<
+test-homework: build/homework-tools/cut build/homework-data/numbers.txt build/test_homework
+	@echo "make test-homework: the solution, the stubs and every mistake of tests/homework/mistakes.txt graded (about 40 compiles: 4 minutes of 2 cores)"
+	build/test_homework

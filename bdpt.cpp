@@ -3164,17 +3164,26 @@ inline size_t editDistance(const std::string& a, const std::string& b) {
         }
     return d[a.size()][b.size()];
 }
-// The known word closest to a misspelt one, if within a quarter of its letters or two; else "".
-inline std::string closestWord(const std::string& word, const std::vector<std::string>& known) {
+// The known words closest to a misspelt one, if within a quarter of its letters or two, each in
+// quotes, joined as "a or b" (which of two equally close words was meant, only the writer knows);
+// "" if none is that close.
+inline std::string closestWords(const std::string& word, const std::vector<std::string>& known, const std::string& quote = "") {
     auto lower = [](std::string s) {
         for (char& c : s) c = char(std::tolower((unsigned char)c));
         return s;
     };
-    std::string best;
-    size_t bestDistance = std::max<size_t>(2, word.size() / 4) + 1;
-    for (const std::string& k : known)  // BDPT is bdpt: capitals cost nothing
-        if (size_t d = editDistance(lower(word), lower(k)); d < bestDistance) best = k, bestDistance = d;
-    return best;
+    std::vector<std::string> best;
+    size_t bestDistance = std::max<size_t>(2, word.size() / 4) + 1;  // past the limit: nothing
+    for (const std::string& k : known) {  // BDPT is bdpt: capitals cost nothing
+        size_t d = editDistance(lower(word), lower(k));
+        if (d < bestDistance) best = {k}, bestDistance = d;
+        else if (d == bestDistance && !best.empty() && std::find(best.begin(), best.end(), k) == best.end()) best.push_back(k);
+    }
+    std::sort(best.begin(), best.end());
+    std::string words;
+    for (size_t i = 0; i < best.size(); ++i)
+        words += (i == 0 ? "" : i + 1 == best.size() ? " or " : ", ") + quote + best[i] + quote;
+    return words;
 }
 
 struct SceneParser {
@@ -3280,8 +3289,8 @@ struct SceneParser {
         if (it == materialIndex.end()) {
             std::vector<std::string> known;
             for (const auto& m : materialIndex) known.push_back(m.first);
-            std::string near = closestWord(name, known);
-            fail("unknown material '" + printable(name) + "' (" + (near.empty() ? "define it first" : "did you mean '" + near + "'?") + ")");
+            std::string near = closestWords(name, known, "'");
+            fail("unknown material '" + printable(name) + "' (" + (near.empty() ? "define it first" : "did you mean " + near + "?") + ")");
         }
         s.material = it->second;
         while (more()) {
@@ -3473,7 +3482,7 @@ struct ArgReader {
             if (v == names[k]) return E(k);
             list += (k ? ", " : "") + std::string(names[k]);
         }
-        std::string near = closestWord(v, std::vector<std::string>(names, names + N));
+        std::string near = closestWords(v, std::vector<std::string>(names, names + N));
         fail(std::string("unknown ") + what + " '" + printable(v) + "' (" + (near.empty() ? list : "did you mean " + near + "? " + list) + ")");
     }
     int mutationList() {  // --mutations: MutationBits, the bidirectional mutation among them
@@ -3672,7 +3681,7 @@ Line parseOptions(const std::vector<std::string>& args, const std::vector<Option
             std::vector<std::string> names;
             for (const OptionRow<Line>& o : table)
                 if (o.name) names.push_back(o.name);
-            std::string near = suggest ? suggest(a) : closestWord(a, names);
+            std::string near = suggest ? suggest(a) : closestWords(a, names);
             in.fail("unknown option '" + printable(a) + "'" + (near.empty() ? "" : " (did you mean " + near + "?)"));
         } else if (cl.scenePath.empty()) {
             cl.scenePath = a;

@@ -174,12 +174,14 @@ inline void warnAboutDuration(const ClassroomLine& cl, const Scene& scene, std::
     RenderOptions opt = cl.opt;
     opt.spp = 1;
     opt.seconds = 0;
-    const double pass = render(trial, opt).cpuSeconds * pixels / (64.0 * 64.0);  // CPU seconds, as --time counts
+    const double trialSeconds = render(trial, opt).cpuSeconds, pass = trialSeconds * pixels / (64.0 * 64.0);  // CPU seconds, as --time counts
     if (pass < 2) return;
     err << "bdpt: " << scene.camera.width << "x" << scene.camera.height << " pixels: a pass (one sample per pixel) takes about "
         << duration(pass) << " of CPU time here";
     if (cl.opt.seconds <= 0 && cl.opt.spp > 1) err << ", its " << cl.opt.spp << " passes about " << duration(pass * cl.opt.spp);
-    err << " (from a 64x64 pass); Ctrl-C stops after the pass in flight\n";
+    char trialText[32];
+    std::snprintf(trialText, sizeof trialText, "%.3g", trialSeconds);
+    err << " (from a 64x64 pass of " << trialText << " CPU s); Ctrl-C stops after the pass in flight\n";
 }
 
 // Before any work: every output writable, the memory there, the reference readable and of the

@@ -151,11 +151,14 @@ inline int renderOne(ClassroomLine& cl, const Scene& scene, const Image& ref, st
     PassLog passLog(cl, scene, ref);
     if (!cl.logPath.empty() && !passLog.open()) { err << "bdpt: cannot write " << cl.logPath << " (nothing rendered)\n"; return 1; }
     VcmTotals vcm;
+    PassSplit split;
     auto watch = [&](const Rendering& r) {
+        if (cl.profile) split.endPass();
         if (!cl.logPath.empty() || cl.liveSeconds > 0) passLog.add(r);
         if (cl.opt.method == Method::VCM) vcm.add(r.storage.vcm);
+        if (cl.profile) split.beginPass();
     };
-    if (cl.profile) cl.opt.threads = 1, gCostClock = CostClock(), gCostClock.on = true, gCostClock.last = gCostClock.now();
+    if (cl.profile) cl.opt.threads = 1, gCostClock.start(), split.beginPass();
     double cpu0 = threadCpuSeconds();
     bool interrupted = false;
     RenderResult r = renderWatched(scene, cl.opt, !cl.quiet, interrupted, watch);
@@ -171,7 +174,7 @@ inline int renderOne(ClassroomLine& cl, const Scene& scene, const Image& ref, st
         return kExitInterrupted;
     }
     if (!cl.quiet) printMethodSummary(cl, scene, r, vcm, out);
-    if (cl.profile) printProfile(gCostClock, cpu, double(r.passes) * r.image.width * r.image.height, out);
+    if (cl.profile) printProfile(split, cpu, double(r.passes) * r.image.width * r.image.height, out);
     if (!cl.quiet && ref.width > 0) {
         ErrorMetrics m = compareToReference(r.image, ref, &scene);
         char text[256];
@@ -208,8 +211,10 @@ inline int runCommandLine(const std::vector<std::string>& args, std::ostream& ou
     return renderOne(cl, scene, ref, out, err);
 }
 
-#ifdef CLASSROOM_MAIN
-int main(int argc, char** argv) {
+// ./bdpt's main: Ctrl-C's handler, the command line, and a render past the memory estimate said
+// plainly. The test programs run it too (tests/helpers.h: a test that needs the program itself,
+// its signals and its exit status, starts the test program as ./bdpt).
+inline int classroomMain(int argc, char** argv) {
     std::signal(SIGINT, onInterrupt);
     try {
         return runCommandLine(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr);
@@ -218,4 +223,7 @@ int main(int argc, char** argv) {
         return 4;
     }
 }
+
+#ifdef CLASSROOM_MAIN
+int main(int argc, char** argv) { return classroomMain(argc, argv); }
 #endif

@@ -142,7 +142,7 @@ inline const std::vector<OptionRow<CR>>& classroomTable() {
     return table;
 }
 
-// The option a misspelt one probably meant: the closest name, or what other programs call it.
+// The options a misspelt one probably meant: the closest names, or what other programs call it.
 inline std::string suggestedOption(const std::string& word) {
     static const std::map<std::string, std::string> otherNames = {
         {"--samples", "--spp"}, {"--output", "--out"}, {"--resolution", "--res"}, {"--depth", "--maxdepth"},
@@ -151,7 +151,7 @@ inline std::string suggestedOption(const std::string& word) {
     std::vector<std::string> names;
     for (const OptionRow<CR>& o : classroomTable())
         if (o.name) names.push_back(o.name);
-    return closestWord(word, names);
+    return closestWords(word, names);
 }
 
 

@@ -1,5 +1,6 @@
 // Shared by the test files: each is its own program that includes the renderer, the lecture's
-// bdpt.cpp with the classroom's tools around it (classroom/classroom.cpp), without their mains.
+// bdpt.cpp with the classroom's tools around it (classroom/classroom.cpp), without their mains;
+// lecture_test.h brings doctest and what the lecture's own tests share.
 #pragma once
 #define BDPT_NO_MAIN
 #include "classroom/classroom.cpp"
@@ -9,28 +10,8 @@
 #else
 #include <stb/stb_image.h>  // reading back what the renderer wrote (libstb-dev holds its code too)
 #endif
-#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
-// Each assertion one function call, not a try block of its own: the test programs compile in 15%
-// less time; an exception inside an assertion fails its test case instead (doctest's manual).
-#define DOCTEST_CONFIG_SUPER_FAST_ASSERTS
-#include <doctest/doctest.h>
-
-// make test's reporter (`--reporters=notes`): doctest's console output, except that a MESSAGE,
-// which reports a measured number and is no failure, becomes one line "  note file:line: text"
-// instead of a block between rules under the test case's name, which looked like a failure.
-namespace doctest {
-namespace {  // as doctest's own reporters: one per test program
-struct NotesReporter : ConsoleReporter {
-    using ConsoleReporter::ConsoleReporter;
-    void log_message(const MessageData& mb) override {
-        if (!(mb.m_severity & assertType::is_warn)) return ConsoleReporter::log_message(mb);
-        DOCTEST_LOCK_MUTEX(mutex)
-        s << "  note " << mb.m_file << ":" << mb.m_line << ": " << mb.m_string << "\n";
-    }
-};
-}  // namespace
-}  // namespace doctest
-DOCTEST_REGISTER_REPORTER("notes", 1, doctest::NotesReporter);
+#define BDPT_TEST_PROGRAM_IS_BDPT
+#include "lecture_test.h"
 #include <tuple>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -61,23 +42,6 @@ inline RenderResult renderEachPass(const Scene& scene, const RenderOptions& opt,
     return renderWatched(scene, opt, false, interrupted, fn);
 }
 
-inline Scene sceneAt(const std::string& file, int width, int height) {
-    Scene s = loadScene(file);
-    setResolution(s.camera, width, height);
-    return s;
-}
-
-// One thread: make test runs as many test files at once as there are cores, and a render's
-// threads, started afresh every pass, cost the small images of the tests 5-8% more CPU. The image
-// does not depend on the number of threads (tests that say so set it).
-inline RenderOptions quietOptions(Method m, int spp, uint64_t seed = 1) {
-    RenderOptions o;
-    o.method = m;
-    o.spp = spp;
-    o.seed = seed;
-    o.threads = 1;
-    return o;
-}
 
 // Pixel by pixel over images of independent seeds: the sample variance of a pixel's value (its
 // squared error, where the estimator is unbiased), summed over `pixels`, and their mean value.
@@ -318,30 +282,53 @@ inline double cpuSeconds(int who) {
 }
 inline double cpuSecondsWithChildren() { return cpuSeconds(RUSAGE_SELF) + cpuSeconds(RUSAGE_CHILDREN); }
 
+// The program a test runs as ./bdpt, its main and its signal handler: this test program itself
+// (--as-bdpt: lecture_test.h), so that make test compiles the renderer once for its tests. Under
+// the sanitizers (make test-sanitize) the real ./bdpt, which that target builds: a sanitized
+// program cannot run under a tests' `ulimit -v`.
+inline std::string bdptProgram() {
+#if defined(__SANITIZE_ADDRESS__)
+    return "./bdpt";
+#else
+    static const std::string self = [] {
+        char path[4096];
+        ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
+        return n > 0 ? std::string(path, size_t(n)) + " --as-bdpt" : std::string("./bdpt");
+    }();
+    return self;
+#endif
+}
+
 // Runs ./bdpt (the real program, its main and signal handler) with args, its stderr into
 // build/tmp/NAME.err; sends SIGINT once `ready` holds (an event: a pass logged, a line printed)
-// and, with secondAfter > 0, once more when the first press has been answered and at least
-// secondAfter seconds have passed (a second press within a second is the same press, so the
-// wait has a floor, not a ceiling). Returns the exit status and what it printed on stderr.
+// and, with secondAfter > 0, once more when the first press has been answered ("bdpt:
+// interrupted:" on stderr) and at least secondAfter seconds have passed (a second press within a
+// second is the same press, so the wait has a floor, not a ceiling). Each wait says whether it saw
+// its event: a test checks that it did, or its second press may have come before the first was
+// answered, or its first before the render ran.
 struct InterruptedRun {
     int status;
     std::string err;
+    bool readySeen = false, firstAnswered = false;
 };
 template <class Ready>
 inline InterruptedRun interruptRun(const std::vector<std::string>& args, const std::string& name, const Ready& ready, double secondAfter) {
-    std::string command = "./bdpt";
+    std::string command = bdptProgram();
     for (const std::string& a : args) command += " '" + a + "'";
-    BackgroundRun run = startInBackground(command + " 2>build/tmp/" + name + ".err >/dev/null", "build/tmp/" + name + ".out");
     const std::string errFile = "build/tmp/" + name + ".err";
-    bool readyCame = waitFor(ready);
+    std::remove(errFile.c_str());  // an earlier run's would be `ready` before this one starts
+    BackgroundRun run = startInBackground(command + " 2>" + errFile + " >/dev/null", "build/tmp/" + name + ".out");
+    InterruptedRun r{0, "", waitFor(ready), false};
     kill(run.pid, SIGINT);
-    if (readyCame && secondAfter > 0) {
-        waitFor([&] { return readFile(errFile).find("bdpt: interrupted:") != std::string::npos; });
+    r.firstAnswered = waitFor([&] { return readFile(errFile).find("bdpt: interrupted:") != std::string::npos || !run.running(); }) &&
+                      readFile(errFile).find("bdpt: interrupted:") != std::string::npos;
+    if (r.readySeen && r.firstAnswered && secondAfter > 0) {
         usleep(useconds_t(secondAfter * 1e6));
         kill(run.pid, SIGINT);
     }
-    int status = run.wait();
-    return {readyCame ? status : -2, readFile(errFile)};
+    r.status = run.wait();
+    r.err = readFile(errFile);
+    return r;
 }
 
 // Power out / power in of the floor of scenes/energy-generator.scene, as light tracing sees it:

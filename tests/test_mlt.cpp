@@ -150,9 +150,13 @@ TEST_CASE("mlt, pssmlt and mmlt agree with the references region by region, over
     // standard error to 0.01-0.1 (the check below), so that a bias of a few percent shows.
     // door-hidden, Veach's showcase, for mlt alone: pssmlt and mmlt run the same code on it as on
     // door, and there took half the test's time (18 of 38 s) for no bug that door does not show.
-    struct Case { std::string scene; int spp[3]; };
-    for (Case c : {Case{"cornell", {16, 4, 16}}, Case{"cornell-glass", {16, 4, 16}}, Case{"door", {16, 16, 64}}, Case{"door-hidden", {32, 0, 0}}}) {
-        Scene scene = sceneAt("scenes/" + c.scene + ".scene", 64, 64);
+    // The Cornell boxes at 32x32 (a quarter of the mutations: their regions' relative errors were
+    // 0.015-0.026 at 64x64, 0.03-0.05 here); the doors at 64x64, mmlt with 32 mutations per pixel and
+    // pssmlt 8 (0.08 at twice these, about 0.11 here): a bug that moved chi-square past 1,800 with
+    // twice the mutations moves it past 900 with these.
+    struct Case { std::string scene; int size; int spp[3]; };
+    for (Case c : {Case{"cornell", 32, {16, 4, 16}}, Case{"cornell-glass", 32, {16, 4, 16}}, Case{"door", 64, {16, 8, 32}}, Case{"door-hidden", 64, {32, 0, 0}}}) {
+        Scene scene = sceneAt("scenes/" + c.scene + ".scene", c.size, c.size);
         RegionEstimate ref = referenceRegions(c.scene, 4);
         for (Method method : {Method::MLT, Method::PSSMLT, Method::MMLT}) {
             if (c.spp[method == Method::MLT ? 0 : method == Method::PSSMLT ? 1 : 2] == 0) continue;
@@ -231,13 +235,43 @@ TEST_CASE("on a non-square image mlt, pssmlt and mmlt agree with bdpt region by 
     Scene scene = sceneAt("scenes/cornell.scene", 48, 32);
     RegionEstimate bdpt = renderRegions(scene, quietOptions(Method::BDPT, 512, 5), 4);
     for (Method method : {Method::MLT, Method::PSSMLT, Method::MMLT}) {
-        RenderOptions opt = quietOptions(method, method == Method::MMLT ? 64 : 16);
+        RenderOptions opt = quietOptions(method, method == Method::MMLT ? 32 : 16);  // a wrong image shape is no small bias
         opt.metropolis.bootstrap = method == Method::MMLT ? 100000 : 20000;
         RegionEstimate e = overSeeds(scene, opt, 4, 8);
         double chi = 0;
         for (size_t r = 0; r < e.mean.size(); ++r) chi += sqr(e.mean[r] - bdpt.mean[r]) / (sqr(e.stdError[r]) + sqr(bdpt.stdError[r]));
         MESSAGE(std::string(methodName(method)) << " at 48x32: chi-square " << chi << " over 16 regions against bdpt");
         CHECK(chi < 100);  // 16 regions: about 22 +- 11 when unbiased (8 seeds), as above
+    }
+}
+
+// mmlt and mlt choose a path's length as part of the chain's state, so their chains end no subpath
+// by roulette (chainOptions): a chain that kept it would stay unbiased and only be noisier
+// (measured: in the furnace at --maxdepth 6, mmlt's squared error over 8 seeds doubles, 0.128 to
+// 0.261, and b's spread over seeds grows 2.6x; mlt's 5%). Measured here exactly, on mmlt, whose
+// bootstrap draws its samples as its chains do: with the chains rendering every length
+// (--chain-short-paths: no bdpt sample beside them, whose subpaths do end by roulette) the image
+// is the same bit for bit whatever --roulette says; a chain drawing roulette numbers changes it.
+// (mlt's bootstrap is independent bdpt samples, which honour --roulette.) pssmlt keeps roulette
+// (its chains mutate the numbers that decide it), and its image changes with it.
+TEST_CASE("mmlt's chains draw no roulette: its image does not depend on --roulette") {
+    Scene scene = sceneAt("scenes/cornell.scene", 16, 16);
+    for (Method method : {Method::MMLT, Method::PSSMLT}) {
+        std::vector<Image> images;
+        for (Roulette roulette : {Roulette::Off, Roulette::Albedo, Roulette::Throughput}) {
+            RenderOptions opt = quietOptions(method, 2, 3);
+            opt.metropolis.bootstrap = 5000;
+            opt.metropolis.chains = 64;
+            opt.metropolis.chainShortPaths = true;
+            opt.roulette = roulette;
+            images.push_back(render(scene, opt).image);
+        }
+        auto same = [](const Image& a, const Image& b) {
+            return std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Vec3)) == 0;
+        };
+        CAPTURE(std::string(methodName(method)));
+        CHECK(same(images[0], images[1]) == (method != Method::PSSMLT));
+        CHECK(same(images[0], images[2]) == (method != Method::PSSMLT));
     }
 }
 

@@ -3,7 +3,7 @@
 // exists, every figure they show is in lecture_notes/figures/, and the formulas they state are
 // the ones the code computes.
 #include "helpers.h"
-#include "densities.h"
+#include "classroom/workshop/densities.h"
 #include "classroom/workshop/worked_path.h"
 #include <dirent.h>
 #include <regex>
@@ -1400,6 +1400,84 @@ TEST_CASE("every command the READMEs and the notes print writes under build/") {
 
 // The README is a first hour's guide: set-up, the tour, the command line, the scene format; the
 // depth is in the notes (its table of topics points there).
+// tests/README.md's rule "No test measures time", checked on the suite's own files: every
+// assertion whose code (its strings and comments aside) names a clock, a duration or a speed
+// carries the words "not a timing threshold:" on its lines or the comment above, with the budget it
+// compares (--time T against the CPU seconds spent) or why no time is compared (the formatting of
+// a duration). A threshold on how fast the machine is has no such reason to give. It reads names:
+// a test keeps a duration in a variable named for its clock (cpuUsed, wallSeconds).
+static std::vector<std::string> checksWithoutBudget(const std::string& file, const std::string& text) {
+    const bool python = file.size() > 3 && file.substr(file.size() - 3) == ".py";
+    static const std::regex clockWord("second|elapsed|wall|speed|duration|millis|cpu|clock|timing|\\btime\\b|\\bfps\\b|per_?sec",
+                                      std::regex::icase);
+    static const std::regex milliseconds("\\bms\\b|[a-z]Ms\\b|_ms\\b");
+    const std::regex assertion(python ? "(^|[^a-z_.])check\\(" : "\\b(CHECK|REQUIRE|WARN)(_[A-Z]+)?\\s*\\(");
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    std::vector<std::string> found;
+    for (size_t i = 0; i < lines.size(); ++i) {
+        std::smatch m;
+        const std::string head = lines[i].substr(0, lines[i].find(python ? "#" : "//"));
+        if (!std::regex_search(head, m, assertion) || (python && head.find("def check(") != std::string::npos)) continue;
+        // The statement from its "(" to the matching ")", strings and comments left out.
+        std::string code;
+        int depth = 0;
+        size_t line = i, at = size_t(m.position(0) + m.length(0)) - 1;
+        for (bool done = false; !done && line < lines.size(); ++line, at = 0) {
+            const std::string& l = lines[line];
+            for (; at < l.size(); ++at) {
+                char c = l[at];
+                if ((!python && c == '/' && at + 1 < l.size() && l[at + 1] == '/') || (python && c == '#')) break;
+                if (c == '"' || (python && c == '\'')) {
+                    for (++at; at < l.size() && l[at] != c; ++at) at += l[at] == '\\';
+                    continue;
+                }
+                code += c;
+                if (c == '(') ++depth;
+                if (c == ')' && --depth == 0) { done = true; break; }
+            }
+            if (done) break;
+        }
+        if (!std::regex_search(code, clockWord) && !std::regex_search(code, milliseconds)) continue;
+        size_t first = i;  // the comment lines right above belong to it
+        while (first > 0 && lines[first - 1].find_first_not_of(' ') != std::string::npos &&
+               lines[first - 1].compare(lines[first - 1].find_first_not_of(' '), python ? 1 : 2, python ? "#" : "//") == 0)
+            --first;
+        bool marked = false;
+        for (size_t k = first; k <= std::min(line, lines.size() - 1); ++k)
+            marked = marked || lines[k].find("not a timing threshold:") != std::string::npos;
+        if (!marked) found.push_back(file + ":" + std::to_string(i + 1) + ": " + lines[i].substr(lines[i].find_first_not_of(' ')));
+    }
+    return found;
+}
+TEST_CASE("no test measures time: every check that names a clock says which budget it compares") {
+    // The rule's own check must bite: a speed threshold, a share of CPU, a wall budget are found;
+    // a count, a clock named in a string, and a budget with its reason are not.
+    CHECK(checksWithoutBudget("x.cpp", "    CHECK(seconds < 5);\n").size() == 1);
+    CHECK(checksWithoutBudget("x.cpp", "    CHECK(wallSeconds(t0) <\n          2.5);\n").size() == 1);
+    CHECK(checksWithoutBudget("x.py", "    check(ratio >= 0.5, \"speed\", \"%.2f\" % (page_cpu, cpu))\n").size() == 1);
+    CHECK(checksWithoutBudget("x.py", "    check(first_frame_ms < 500, \"fast\")\n").size() == 1);
+    CHECK(checksWithoutBudget("x.cpp", "    CHECK(redraws <= 12);\n    CHECK(contains(r.out, \"CPU s on 1 thread\"));\n").empty());
+    CHECK(checksWithoutBudget("x.cpp", "    // not a timing threshold: --time's budget\n    CHECK(cpuUsed < 0.85);\n").empty());
+    CHECK(checksWithoutBudget("x.py", "def check(ok, what, detail=\"\"):\n    check(n == 4, \"a --time run\")\n").empty());
+    std::vector<std::string> found;
+    DIR* dir = opendir("tests");
+    REQUIRE(dir);
+    int files = 0;
+    for (dirent* e; (e = readdir(dir));) {
+        const std::string n = e->d_name;
+        const bool test = (n.rfind("test_", 0) == 0 && (n.size() > 4 && (n.substr(n.size() - 4) == ".cpp" || n.substr(n.size() - 3) == ".py"))) || n == "helpers.h";
+        if (!test) continue;
+        ++files;
+        for (const std::string& f : checksWithoutBudget("tests/" + n, slurp("tests/" + n))) found.push_back(f);
+    }
+    closedir(dir);
+    for (const std::string& f : found) MESSAGE(f);
+    CHECK(files >= 16);
+    CHECK(found.empty());
+}
+
 TEST_CASE("the README is at most 400 lines") {
     std::istringstream readme(slurp("README.md"));
     int lines = 0;

@@ -43,9 +43,11 @@ TEST_CASE("a 1 MB line is rejected like any other") {
 
 TEST_CASE("Ctrl-C finishes the pass, writes the completed passes and exits 130; a second press leaves nothing") {
     for (const char* f : {"build/tmp/int.png", "build/tmp/int.pfm", "build/tmp/int.csv"}) std::remove(f);
-    int status = interruptRun({"scenes/cornell.scene", "--res", "64x64", "--spp", "1000000", "--threads", "1", "--log", "build/tmp/int.csv", "--out",
-                               "build/tmp/int.png"}, "int", [] { return loggedPasses("build/tmp/int.csv", "cornell,bdpt") >= 1; }, 0).status;
-    CHECK(status == 130);
+    InterruptedRun once = interruptRun({"scenes/cornell.scene", "--res", "64x64", "--spp", "1000000", "--threads", "1", "--log", "build/tmp/int.csv",
+                                        "--out", "build/tmp/int.png"}, "int", [] { return loggedPasses("build/tmp/int.csv", "cornell,bdpt") >= 1; }, 0);
+    CHECK(once.readySeen);      // the render was running (a pass logged) when Ctrl-C came
+    CHECK(once.firstAnswered);  // and said so at once
+    CHECK(once.status == 130);
     Image img;
     REQUIRE(readPFM("build/tmp/int.pfm", img));
     CHECK(img.width == 64);
@@ -58,6 +60,8 @@ TEST_CASE("Ctrl-C finishes the pass, writes the completed passes and exits 130; 
     std::remove("build/tmp/int2.pfm");
     InterruptedRun abandoned = interruptRun({"scenes/cornell.scene", "--res", "2048x2048", "--spp", "1000000", "--threads", "1", "--out", "build/tmp/int2.png"},
                                             "int2", [] { return readFile("build/tmp/int2.err").find("a pass (one sample per pixel) takes about") != std::string::npos; }, 1.2);
+    CHECK(abandoned.readySeen);
+    CHECK(abandoned.firstAnswered);  // the second press came after the first was answered
     CHECK(abandoned.status == kExitAbandoned);
     CHECK(abandoned.err.find("bdpt: abandoned: no image written") != std::string::npos);
     CHECK(!fileExists("build/tmp/int2.png"));

@@ -62,6 +62,97 @@ static double correlation(const std::vector<double>& a, const std::vector<double
     return sab / std::sqrt(saa * sbb);
 }
 
+// The construction against the published data: Joe and Kuo's direction numbers (the file
+// new-joe-kuo-6.21201, its first 31 rows: d, degree s, the polynomial's coefficients a, m_1..m_s)
+// turned into points by their own reference algorithm (V_k = m_k 2^(32-k); past s,
+// V_k = V_(k-s) ^ V_(k-s)/2^s ^ the V_(k-j) whose coefficient a_j is set, a's bits read from the
+// top), written here apart from the code; the first points of its first two dimensions are scipy's
+// published ones. Every dimension alone is stratified even with a polynomial read backwards (each
+// C_d stays invertible): the whole point must match, as a pixel draws it with --no-scramble (the
+// camera's stream, point i in pass i): 1,024 points, 32 dimensions, to the 24 bits a number has.
+static const char* const kNewJoeKuo = R"(2 1 0 1
+3 2 1 1 3
+4 3 1 1 3 1
+5 3 2 1 1 1
+6 4 1 1 1 3 3
+7 4 4 1 3 5 13
+8 5 2 1 1 5 5 17
+9 5 4 1 1 5 5 5
+10 5 7 1 1 7 11 19
+11 5 11 1 1 5 1 1
+12 5 13 1 1 1 3 11
+13 5 14 1 3 5 5 31
+14 6 1 1 3 3 9 7 49
+15 6 13 1 1 1 15 21 21
+16 6 16 1 3 1 13 27 49
+17 6 19 1 1 1 15 7 5
+18 6 22 1 3 1 15 13 25
+19 6 25 1 1 5 5 19 61
+20 7 1 1 3 7 11 23 15 103
+21 7 4 1 3 7 13 13 15 69
+22 7 7 1 1 3 13 7 35 63
+23 7 8 1 3 5 9 1 25 53
+24 7 14 1 3 1 13 9 35 107
+25 7 19 1 3 1 5 27 61 31
+26 7 21 1 1 5 11 19 41 61
+27 7 28 1 3 5 3 3 13 69
+28 7 31 1 1 7 13 1 19 1
+29 7 32 1 3 7 5 13 19 59
+30 7 37 1 1 3 9 25 29 41
+31 7 41 1 3 5 13 23 1 55
+32 7 42 1 3 7 3 13 59 17)";
+static std::vector<std::array<uint32_t, 33>> joeKuoDirections() {  // V[1..32] per dimension, V_k as a 32-bit fraction
+    std::vector<std::array<uint32_t, 33>> dims;
+    std::array<uint32_t, 33> first{};
+    for (int k = 1; k <= 32; ++k) first[k] = 1u << (32 - k);  // dimension 1: van der Corput
+    dims.push_back(first);
+    std::istringstream rows(kNewJoeKuo);
+    for (std::string row; std::getline(rows, row);) {
+        std::istringstream in(row);
+        unsigned d, s, a;
+        in >> d >> s >> a;
+        std::array<uint32_t, 33> V{};
+        for (unsigned k = 1; k <= s; ++k) {
+            unsigned m;
+            in >> m;
+            V[k] = m << (32 - k);
+        }
+        for (unsigned k = s + 1; k <= 32; ++k) {
+            V[k] = V[k - s] ^ (V[k - s] >> s);
+            for (unsigned j = 1; j <= s - 1; ++j)
+                if ((a >> (s - 1 - j)) & 1) V[k] ^= V[k - j];
+        }
+        dims.push_back(V);
+    }
+    return dims;
+}
+TEST_CASE("Sobol points: a pixel's unscrambled numbers are Joe and Kuo's published sequence, all 32 dimensions") {
+    const auto V = joeKuoDirections();
+    REQUIRE(V.size() == kLowDiscrepancyDimensions);
+    auto point = [&](uint32_t i, size_t d) {  // x_d(i) = xor of V_k over the bits k of i (natural order)
+        uint32_t x = 0;
+        for (int k = 1; k <= 32; ++k)
+            if ((i >> (k - 1)) & 1) x ^= V[d][k];
+        return float(x >> 8) * 0x1p-24f;
+    };
+    // scipy's published first points (its order is Gray code's: its i-th is the natural (i ^ i/2)-th)
+    const float scipy[8][2] = {{0, 0}, {0.5f, 0.5f}, {0.75f, 0.25f}, {0.25f, 0.75f}, {0.375f, 0.375f}, {0.875f, 0.875f}, {0.625f, 0.125f}, {0.125f, 0.625f}};
+    for (uint32_t i = 0; i < 8; ++i) {
+        CHECK(point(i ^ (i >> 1), 0) == scipy[i][0]);
+        CHECK(point(i ^ (i >> 1), 1) == scipy[i][1]);
+    }
+    const auto u = pixelPoints(Sampler::Sobol, 1, 0, 1024, true);
+    int differ = 0, first = -1;
+    for (uint32_t i = 0; i < 1024; ++i)
+        for (size_t d = 0; d < kLowDiscrepancyDimensions; ++d)
+            if (u[d][i] != point(i, d)) {
+                if (first < 0) first = int(d);
+                ++differ;
+            }
+    MESSAGE(differ << " of " << 1024 * kLowDiscrepancyDimensions << " numbers differ from the published sequence's" << (first >= 0 ? ", first in dimension " + std::to_string(first) : std::string()));
+    CHECK(differ == 0);
+}
+
 TEST_CASE("scrambles: pixels and seeds get independent points, uniform in every dimension; --no-scramble does not") {
     const int n = 4096;
     for (bool noScramble : {false, true}) {

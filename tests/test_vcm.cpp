@@ -106,14 +106,17 @@ TEST_CASE("sds-ior1: vcm converges to the room without the balls, bdpt misses th
     Image reference = referenceImage("tests/refs/sds-ior1-open.pfm");  // nee, 65,536 passes (make test-refs)
     REQUIRE(reference.width == W);
     CHECK(imageMean(reference) == doctest::Approx(0.4722).epsilon(0.005));
+    // 16 passes over two seeds, 256 over one: its mean error (0.2% measured, 2% allowed) and RMSE
+    // (a quarter of 16 passes', half allowed) leave room for a seed's spread.
     double meanError[2] = {0, 0}, rmse[2] = {0, 0};
-    const int seeds = 2;
-    for (int seed = 1; seed <= seeds; ++seed)
-        for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < 2; ++i) {
+        const int seeds = i ? 1 : 2;
+        for (int seed = 1; seed <= seeds; ++seed) {
             ErrorMetrics m = compareToReference(render(balls, quietOptions(Method::VCM, i ? 256 : 16, seed)).image, reference);
             meanError[i] += std::fabs(m.bias) / seeds;
             rmse[i] += m.rmse / seeds;
         }
+    }
     MESSAGE("vcm mean error " << meanError[0] << " (16 passes), " << meanError[1] << " (256); rmse " << rmse[0] << ", " << rmse[1]);
     CHECK(meanError[1] < 0.02);
     CHECK(meanError[0] < 0.04);

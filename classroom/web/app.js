@@ -861,6 +861,7 @@ window.bdptPage = {
                                              error: p.error, done: p.done, nonFinite: p.nonFinite, firstFrameMs: p.firstFrameMs, firstFramePasses: p.firstFramePasses, curve: p.curve,
                                              strategies: p.strategies ? p.strategies.length : 0, width: p.width, height: p.height,
                                              comparedWidth: p.comparedWidth, notes: p.notes, what: p.el.querySelector(".what").textContent,
+                                             limitSpp: p.spp, limitSeconds: p.limitSeconds,
                                              stats: p.el.querySelector(".stats").textContent })),
     // The canvas as drawn: RGBA bytes of panel i.
     canvasPixels: (i) => Array.from(state.panels[i].canvas.getContext("2d").getImageData(0, 0, state.panels[i].width, state.panels[i].height).data),

@@ -86,6 +86,15 @@ function slice() {
         const passes = api.row();
         if (passes < 0) { job.outOfMemory = true; break; }
         job.passes = passes;
+        // a frame at every power of two passes as well: the chart's log axis gets its points at
+        // 1, 2, 4, 8, ... passes, however fast the passes go
+        if (passes > job.framedPasses && (passes & (passes - 1)) === 0 && api.rowsDone() === 0 && !finished()) {
+            job.framedPasses = passes;
+            job.seconds += (performance.now() - t0) / 1000;
+            frame(false);
+            channel.port2.postMessage(0);
+            return;
+        }
     } while (performance.now() - t0 < 40 && !finished());
     job.seconds += (performance.now() - t0) / 1000;
     if (job.outOfMemory || finished()) { frame(true); job = null; return; }
@@ -106,7 +115,7 @@ onmessage = (event) => {
         const error = api.start(m.sceneText, m.sceneName, m.entry, m.width, m.height, m.spp, m.seconds, m.seed, m.strategyLength);
         if (error) { job = null; postMessage({ type: "error", id: m.id, error }); return; }
         job = { id: m.id, spp: api.spp(), limitSeconds: api.seconds(), passes: 0, seconds: 0, strategies: m.strategyLength > 0 && api.strategies() !== "",
-                lastStrategies: -1e9, strategyPasses: 0, lastFrame: performance.now(), outOfMemory: false, stopped: false };
+                lastStrategies: -1e9, strategyPasses: 0, lastFrame: performance.now(), outOfMemory: false, stopped: false, framedPasses: 0 };
         postMessage({ type: "started", id: m.id, exposure: api.exposure(), width: api.width(), height: api.height(), spp: job.spp, seconds: job.limitSeconds,
                       referenceWidth: api.referenceWidth(), referenceHeight: api.referenceHeight(), strategies: job.strategies,
                       threadsGiven: !!api.threadsGiven() });

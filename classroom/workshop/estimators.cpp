@@ -10,8 +10,8 @@
 //   row  surface  p_A p_B p_C  (relative to the largest)  balance weights  max's choice
 //   then the lamp's emission cosine toward x_1 and the distance |x_1 - x_0|, the two factors of
 //   p_C that change along the wall (page 10 explains row 94 by them)
-#include "tests/bench.h"
-#include "tests/densities.h"
+#include "classroom/workshop/workshop.h"
+#include "classroom/workshop/densities.h"
 
 int main(int argc, char** argv) {
     Scene scene = loadScene("scenes/cornell.scene");

@@ -7,7 +7,7 @@
 // relRMSE on one scale for all, white at the largest), then mlt's (Veach's) relRMSE over bdpt's
 // in the colours of --ratio (blue: mlt's error smaller, red: larger, full colour at a factor of 2).
 //   build/uneven [--scene NAME] [--seconds S] [--seeds K] [--grid G] [--out DIR]
-#include "tests/bench.h"
+#include "classroom/workshop/workshop.h"
 
 int main(int argc, char** argv) {
     std::string name = "door", outDir = "build";

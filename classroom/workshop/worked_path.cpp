@@ -1,6 +1,6 @@
 // build/worked-path [cornell|caustic]: pages 7 and 10M's paths worked with numbers, as the
 // markdown tables those pages show (classroom/workshop/worked_path.h computes them).
-#include "tests/bench.h"
+#include "classroom/workshop/workshop.h"
 #include "classroom/workshop/worked_path.h"
 
 int main(int argc, char** argv) {

@@ -1,0 +1,322 @@
+// classroom/homework/cut.cpp: make homework's cutter. Reads the task list (classroom/homework/tasks)
+// and bdpt.cpp, the solution, and writes the student's bdpt.cpp, each cut of the tasks asked for
+// replaced by a TODO and a stub, and the student's README of those tasks; the Makefile copies the
+// scenes, the grader and its data beside them. A cut that does not match bdpt.cpp stops it with
+// the task list's file:line, before anything is written.
+//   cut TASKS_FILE SOURCE OUT_DIR [IDS]     IDS: "H1 H2 ..." (default: every task but the optional)
+//   cut TASKS_FILE --list [IDS]             the grader's task list (ID points title) on stdout
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+struct Cut {
+    int line = 0;                     // in the task list
+    std::string function, from, to;   // to empty: the whole body
+    std::vector<std::string> stub, todo;
+};
+struct Task {
+    int line = 0;
+    std::string id, title, points, slides, notes, time, teaches, told;
+    std::vector<Cut> cuts;
+    bool optional() const { return title.find("optional") != std::string::npos; }
+};
+
+static std::string trim(const std::string& s) {
+    size_t a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t\r");
+    return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+static std::vector<std::string> splitBars(const std::string& s) {
+    std::vector<std::string> parts;
+    std::stringstream in(s);
+    for (std::string p; std::getline(in, p, '|');) parts.push_back(trim(p));
+    return parts;
+}
+[[noreturn]] static void fail(const std::string& where, const std::string& message) {
+    throw std::runtime_error(where + ": " + message);
+}
+
+static std::vector<Task> readTasks(const std::string& file) {
+    std::ifstream in(file);
+    if (!in) fail(file, "cannot read the task list");
+    std::vector<Task> tasks;
+    int n = 0;
+    for (std::string raw; std::getline(in, raw);) {
+        ++n;
+        const std::string where = file + ":" + std::to_string(n);
+        if (trim(raw).empty() || trim(raw)[0] == '#') continue;
+        const bool indented = raw[0] == ' ';
+        std::string line = trim(raw), key = line.substr(0, line.find(' ')), rest = trim(line.substr(key.size()));
+        if (key == "task") {
+            std::vector<std::string> p = splitBars(rest);
+            if (p.size() != 3) fail(where, "a task is 'task ID | title | points'");
+            Task t;
+            t.line = n, t.id = p[0], t.title = p[1], t.points = p[2];
+            tasks.push_back(t);
+            continue;
+        }
+        if (tasks.empty()) fail(where, "'" + key + "' before the first task");
+        Task& t = tasks.back();
+        if (indented) {
+            if (t.cuts.empty()) fail(where, "'" + key + "' before the task's first cut");
+            if (key == "stub") t.cuts.back().stub.push_back(rest);
+            else if (key == "todo") t.cuts.back().todo.push_back(rest);
+            else fail(where, "unknown key '" + key + "' under a cut (stub, todo)");
+        } else if (key == "cut" || key == "cut-lines") {
+            Cut c;
+            c.line = n;
+            std::vector<std::string> p = splitBars(rest);
+            if (key == "cut-lines" && p.size() != 3) fail(where, "cut-lines FUNCTION | FROM | TO");
+            c.function = p[0];
+            if (key == "cut-lines") c.from = p[1], c.to = p[2];
+            t.cuts.push_back(c);
+        } else if (key == "slides") t.slides = rest;
+        else if (key == "notes") t.notes = rest;
+        else if (key == "time") t.time = rest;
+        else if (key == "teaches") t.teaches = rest;
+        else if (key == "told") t.told = rest;
+        else fail(where, "unknown key '" + key + "' (slides, notes, time, teaches, told, cut, cut-lines)");
+    }
+    for (const Task& t : tasks)
+        for (const Cut& c : t.cuts)
+            if (c.stub.empty() && c.todo.empty()) fail(file + ":" + std::to_string(c.line), "a cut needs a todo");
+    return tasks;
+}
+
+// The source as the compiler sees its structure: comments, strings and character literals blanked
+// (same length), so that braces and names are found only in code.
+static std::string codeOnly(const std::string& s) {
+    std::string c = s;
+    for (size_t i = 0; i < c.size(); ++i) {
+        if (c[i] == '/' && i + 1 < c.size() && c[i + 1] == '/') {
+            while (i < c.size() && c[i] != '\n') c[i++] = ' ';
+        } else if (c[i] == '/' && i + 1 < c.size() && c[i + 1] == '*') {
+            for (; i + 1 < c.size() && !(c[i] == '*' && c[i + 1] == '/'); ++i)
+                if (c[i] != '\n') c[i] = ' ';
+            if (i + 1 < c.size()) c[i] = c[i + 1] = ' ', ++i;
+        } else if (c[i] == '"' || c[i] == '\'') {
+            const char q = c[i];
+            if (q == '\'' && i > 0 && std::isxdigit((unsigned char)c[i - 1])) continue;  // a digit separator
+            for (++i; i < c.size() && c[i] != q; ++i) {
+                if (c[i] == '\\') c[i++] = ' ';
+                if (i < c.size() && c[i] != '\n') c[i] = ' ';
+            }
+        }
+    }
+    return c;
+}
+
+static size_t matching(const std::string& code, size_t open, char a, char b) {
+    int depth = 0;
+    for (size_t i = open; i < code.size(); ++i) {
+        if (code[i] == a) ++depth;
+        if (code[i] == b && --depth == 0) return i;
+    }
+    return std::string::npos;
+}
+
+// A function's first definition at the file's top level: its parameter list [paren, close] and
+// its body [open, end] (the braces).
+struct Definition {
+    size_t paren = 0, close = 0, open = 0, end = 0;
+};
+static bool findDefinition(const std::string& code, const std::string& name, Definition& d) {
+    auto isWord = [](char ch) { return std::isalnum((unsigned char)ch) || ch == '_'; };
+    for (size_t at = code.find(name + "("); at != std::string::npos; at = code.find(name + "(", at + 1)) {
+        if (at > 0 && (isWord(code[at - 1]) || code[at - 1] == ':')) continue;
+        size_t lineStart = code.rfind('\n', at) + 1;
+        if (code[lineStart] == ' ' || code[lineStart] == '\n') continue;  // not at the top level
+        d.paren = at + name.size();
+        d.close = matching(code, d.paren, '(', ')');
+        if (d.close == std::string::npos) continue;
+        size_t next = code.find_first_not_of(" \n", d.close + 1);
+        while (next != std::string::npos && code.compare(next, 5, "const") == 0) next = code.find_first_not_of(" \n", next + 5);
+        if (next == std::string::npos || code[next] != '{') continue;  // a declaration
+        d.open = next;
+        d.end = matching(code, d.open, '{', '}');
+        if (d.end != std::string::npos) return true;
+    }
+    return false;
+}
+
+// The names of a parameter list's named parameters ("const Scene& scene, int, Rng& rng = x").
+static std::vector<std::string> parameterNames(const std::string& list) {
+    std::vector<std::string> names, params;
+    int depth = 0;
+    std::string cur;
+    for (char ch : list) {
+        if (ch == '<' || ch == '(') ++depth;
+        if (ch == '>' || ch == ')') --depth;
+        if (ch == ',' && depth == 0) params.push_back(cur), cur.clear();
+        else cur += ch;
+    }
+    params.push_back(cur);
+    for (std::string p : params) {
+        p = trim(p.substr(0, p.find('=')));
+        std::vector<std::string> words;
+        std::istringstream in(p);
+        for (std::string w; in >> w;) words.push_back(w);
+        if (words.size() < 2) continue;
+        std::string last = words.back();
+        if (last.back() == '&' || last.back() == '*' || last == "int" || last == "float" || last == "double") continue;
+        while (!last.empty() && (last[0] == '&' || last[0] == '*')) last.erase(0, 1);
+        if (!last.empty()) names.push_back(last);
+    }
+    return names;
+}
+
+// Comment lines of at most 100 columns, each starting with `indent` "// ".
+static std::string commentLines(const std::string& text, const std::string& indent) {
+    std::string out, line;
+    std::istringstream words(text);
+    for (std::string w; words >> w;) {
+        if (!line.empty() && indent.size() + 3 + line.size() + 1 + w.size() > 100) out += indent + "// " + line + "\n", line.clear();
+        line += (line.empty() ? "" : " ") + w;
+    }
+    if (!line.empty()) out += indent + "// " + line + "\n";
+    return out;
+}
+static std::string joined(const std::vector<std::string>& lines) {
+    std::string s;
+    for (const std::string& l : lines) s += (s.empty() ? "" : " ") + l;
+    return s;
+}
+static std::string notePages(const Task& t) {
+    std::string s;
+    std::istringstream in(t.notes);
+    for (std::string n; in >> n;) s += (s.empty() ? "" : ", ") + std::string("lecture_notes/") + n;
+    return s;
+}
+
+static std::string todoBlock(const Task& t, const Cut& c, const std::string& indent) {
+    return commentLines("TODO (" + t.id + ", " + t.title + "): " + joined(c.todo), indent) +
+           commentLines("The slides: " + t.slides + ". The notes: " + notePages(t) + ".", indent) +
+           commentLines("Until it is written, the stub below stands here: it compiles and renders, black or wrong.", indent);
+}
+
+static std::string applyCut(const std::string& source, const Task& t, const Cut& c, const std::string& tasksFile) {
+    const std::string where = tasksFile + ":" + std::to_string(c.line), code = codeOnly(source);
+    Definition d;
+    if (!findDefinition(code, c.function, d)) fail(where, "no definition of " + c.function + "() in the source");
+    if (c.to.empty()) {  // the whole body
+        std::string body = "\n" + todoBlock(t, c, "    ");
+        for (const std::string& p : parameterNames(source.substr(d.paren + 1, d.close - d.paren - 1))) body += "    (void)" + p + ";\n";
+        for (const std::string& s : c.stub) body += "    " + s + "\n";
+        return source.substr(0, d.open + 1) + body + source.substr(d.end);
+    }
+    size_t from = source.find(c.from, d.open), to = from == std::string::npos ? from : source.find(c.to, from);
+    if (from == std::string::npos || from > d.end) fail(where, "'" + c.from + "' is not in " + c.function + "()");
+    if (to == std::string::npos || to > d.end) fail(where, "'" + c.to + "' does not follow '" + c.from + "' in " + c.function + "()");
+    from = source.rfind('\n', from) + 1, to = source.rfind('\n', to) + 1;
+    const std::string indent = source.substr(from, source.find_first_not_of(' ', from) - from);
+    std::string lines = todoBlock(t, c, indent);
+    for (const std::string& s : c.stub) lines += indent + s + "\n";
+    return source.substr(0, from) + lines + source.substr(to);
+}
+
+static std::string readme(const std::vector<const Task*>& tasks) {
+    std::ostringstream r;
+    r << "# Homework: the slides' methods, graded by the physics\n\n"
+      << "This folder is the renderer of the lecture *Bidirectional Path Tracing & Reciprocity*, `bdpt.cpp`, with the\n"
+      << "bodies of some of its functions taken out. Each is marked `TODO (Hn, ...)` and holds a stub that compiles\n"
+      << "and renders, black or wrong. Write them back, one task at a time, in this order; after each, ask the grader.\n\n"
+      << "```sh\n"
+      << "make                 # builds ./bdpt from your bdpt.cpp (seconds)\n"
+      << "./bdpt scenes/cornell.scene --method pt --out build/cornell.png   # look at what your code renders\n"
+      << "make grade           # compiles the grader with your bdpt.cpp (15 seconds), then checks every task (seconds)\n"
+      << "make grade TASK=H2   # one task's checks alone\n"
+      << "```\n\n"
+      << "The grader prints a line per task, `Hn title ... N / M`, what failed under it (the check, what it expected,\n"
+      << "what your code gave, and the likely mistake with the notes' page to read) and the total. It knows no\n"
+      << "solution: it checks what the physics requires (closed forms, one method against another, weights that\n"
+      << "sum to 1, energy), and compares renders with images the complete renderer made (`grader/data/`). Each\n"
+      << "task runs in a process of its own with a limit of CPU time and memory: a crash, an endless loop or a\n"
+      << "huge allocation costs that task's points, with a message, and not the others'.\n\n"
+      << "Read beside each task the slides it names and the notes' pages (`lecture_notes/`, in this folder); the\n"
+      << "rest of `bdpt.cpp` is the lecture's code, and the functions a TODO names are there to be called.\n"
+      << "`./bdpt --help` lists the options; `--method` chooses the slides' panel, `--res 64x64` makes a render quick.\n\n";
+    int total = 0;
+    for (const Task* t : tasks) total += std::stoi(t->points);
+    r << "## The tasks (" << total << " points)\n\n";
+    for (const Task* t : tasks) {
+        r << "### " << t->id << " " << t->title << " (" << t->points << " points, " << t->time << ")\n\n"
+          << t->told << "\n\n"
+          << "- **The slides:** " << t->slides << ".\n"
+          << "- **The notes:** " << notePages(*t) << ".\n"
+          << "- **What it teaches:** " << t->teaches << ".\n";
+        for (const Cut& c : t->cuts)
+          r << "- **`" << c.function << "()`" << (c.to.empty() ? "" : ", the lines marked in it") << ":** " << joined(c.todo) << "\n";
+        r << "\n";
+    }
+    r << "## What the grader cannot see\n\n"
+      << "It checks what a method renders and what a function returns on the scenes it knows: cornell, its\n"
+      << "point-lit twin, the furnace, a glass interface, a bumped floor and a few of its own. Code that is right\n"
+      << "there and wrong elsewhere (a scene it does not render, an option it does not pass) can pass; so can code\n"
+      << "that is slow. Full points say the physics holds on those scenes, not that the code is the lecture's.\n";
+    return r.str();
+}
+
+int main(int argc, char** argv) {
+    if (argc < 4 && !(argc == 3 && std::string(argv[2]) == "--list")) {
+        std::fprintf(stderr, "usage: %s TASKS_FILE SOURCE OUT_DIR [\"H1 H2 ...\"] | %s TASKS_FILE --list [\"H1 H2 ...\"]\n", argv[0], argv[0]);
+        return 2;
+    }
+    try {
+        const std::string tasksFile = argv[1], sourceFile = argv[2];
+        const bool listOnly = sourceFile == "--list";
+        const std::string out = listOnly ? "" : argv[3];
+        std::vector<Task> tasks = readTasks(tasksFile);
+        std::vector<std::string> wanted;
+        const int idsAt = listOnly ? 3 : 4;
+        std::istringstream ids(argc > idsAt ? argv[idsAt] : "");
+        for (std::string id; ids >> id;) wanted.push_back(id);
+        std::vector<const Task*> chosen;
+        for (const std::string& id : wanted) {
+            auto t = std::find_if(tasks.begin(), tasks.end(), [&](const Task& x) { return x.id == id; });
+            if (t == tasks.end()) {
+                std::string known;
+                for (const Task& x : tasks) known += " " + x.id;
+                fail("TASKS", "no task " + id + " (the tasks:" + known + ")");
+            }
+            chosen.push_back(&*t);
+        }
+        if (wanted.empty())
+            for (const Task& t : tasks)
+                if (!t.optional()) chosen.push_back(&t);
+        std::sort(chosen.begin(), chosen.end(), [&](const Task* a, const Task* b) { return a->line < b->line; });
+        std::string list;
+        for (const Task* t : chosen) list += t->id + " " + t->points + " " + t->title + "\n";
+        if (listOnly) {
+            std::fputs(list.c_str(), stdout);
+            return 0;
+        }
+        std::ifstream in(sourceFile, std::ios::binary);
+        if (!in) fail(sourceFile, "cannot read it");
+        std::stringstream s;
+        s << in.rdbuf();
+        std::string source = s.str();
+        for (const Task* t : chosen)
+            for (const Cut& c : t->cuts) source = applyCut(source, *t, c, tasksFile);
+        auto write = [](const std::string& path, const std::string& text) {
+            std::ofstream f(path + ".tmp", std::ios::binary);
+            f << text;
+            f.close();
+            if (!f || std::rename((path + ".tmp").c_str(), path.c_str()) != 0) fail(path, "cannot write it");
+        };
+        write(out + "/bdpt.cpp", source);
+        write(out + "/README.md", readme(chosen));
+        write(out + "/grader/tasks.txt", list);
+        std::printf("make homework: %s/ holds bdpt.cpp with the tasks", out.c_str());
+        for (const Task* t : chosen) std::printf(" %s", t->id.c_str());
+        std::printf(" cut out, the scenes, the grader and its data; its README.md says what to do\n");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "make homework: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
