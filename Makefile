@@ -95,6 +95,12 @@ refs: bdpt
 	@echo "make refs: rewrites scenes/refs/ (committed), 2 seeds x 90 s per scene (door-hidden 2 x 27 min): about 95 minutes"
 	+classroom/workshop/charts.sh refs
 
+# The page's references at the sizes of the notes' buttons that no reference of scenes/refs/ meets
+# (committed; classroom/web/refs/).
+web-refs: bdpt
+	@echo "make web-refs: rewrites classroom/web/refs/ (committed), 2 seeds x 60 s per reference (sds-point 2 x 4 min): about 16 CPU minutes"
+	+classroom/workshop/charts.sh webrefs
+
 # The tests' own references (committed), where no scene of scenes/refs/ fits: the room of
 # sds-ior1 without its balls (test_vcm) and cornell's direct light (test_sampler). About 3 minutes.
 test-refs: bdpt
@@ -153,8 +159,9 @@ help:
 	@echo "                FULL=1 after charts, efficiency or bench: the notes' budgets (12, 25 and 15 minutes)"
 	@echo "make figures    REWRITES the committed figures and tables of lecture_notes/ (about 35 minutes)"
 	@echo "make refs       REWRITES the committed references in scenes/refs/ (about 95 minutes)"
+	@echo "make web-refs   REWRITES the page's own references in classroom/web/refs/ (about 16 CPU minutes)"
 	@echo "make test-refs  REWRITES the tests' own references in tests/refs/ (about 3 minutes)"
-	@echo "make web        the page in the browser, the notes beside the methods: build/web/ (about 30 s; emscripten, libjs-katex, libjs-marked)"
+	@echo "make web        the page in the browser, the notes beside the methods: build/web/ (about 30 s; emscripten, libjs-katex, libjs-marked, libjs-highlight.js)"
 	@echo "make serve-web  make web, then serves it at http://localhost:8000/ (PORT=...)"
 	@echo "make test-web   the page in headless chromium against ./bdpt and the notes' numbers, from a file, a dead worker, phone and laptop sizes (about a minute)"
 	@echo "make bench-web  WebAssembly's time per sample against ./bdpt's, one thread each, under Node and in chromium (about 2 minutes)"
@@ -169,13 +176,13 @@ help:
 # NODE_PATH: Debian's emscripten finds its optimiser's modules (acorn) there.
 WEB_FLAGS := -std=c++17 -O3 -msimd128 -msse -msse2 -fwasm-exceptions -DBDPT_STB_HEADER -I/usr/include/stb
 WEB_PAGE := $(addprefix build/web/,index.html app.js style.css)
-web: build/web/engine.js build/web/scenes.js build/web/notes.js build/web/katex/katex.min.css $(WEB_PAGE)
-build/web-engine/bdpt-web.js: classroom/web/bdpt-web.cpp bdpt.cpp $(wildcard classroom/*.h) $(wildcard scenes/*.scene scenes/refs/*.pfm)
+web: build/web/engine.js build/web/scenes.js build/web/notes.js build/web/code.js build/web/highlight.css build/web/katex/katex.min.css $(WEB_PAGE)
+build/web-engine/bdpt-web.js: classroom/web/bdpt-web.cpp bdpt.cpp $(wildcard classroom/*.h) $(wildcard scenes/*.scene scenes/refs/*.pfm classroom/web/refs/*.pfm) tests/refs/cornell-direct.pfm
 	@command -v em++ >/dev/null || { echo "make web needs Debian's emscripten: apt-get install emscripten"; exit 1; }
 	@mkdir -p build/web-engine
 	NODE_PATH=/usr/share/nodejs em++ $(WEB_FLAGS) -o build/web-engine/bdpt-web.tmp.js classroom/web/bdpt-web.cpp \
 	  -sMODULARIZE=1 -sEXPORT_NAME=createBdpt -sALLOW_MEMORY_GROWTH=1 -sENVIRONMENT=worker -sSINGLE_FILE=1 \
-	  -sEXPORTED_RUNTIME_METHODS=cwrap --embed-file scenes@/scenes --exclude-file '*.png' --exclude-file '*.csv'
+	  -sEXPORTED_RUNTIME_METHODS=cwrap --embed-file scenes@/scenes --embed-file tests/refs/cornell-direct.pfm@/tests/refs/cornell-direct.pfm --embed-file classroom/web/refs@/web-refs --exclude-file '*.png' --exclude-file '*.csv'
 	mv build/web-engine/bdpt-web.tmp.js $@
 build/web/engine.js: build/web-engine/bdpt-web.js classroom/web/worker.js
 	@mkdir -p build/web
@@ -191,6 +198,14 @@ build/web/notes.js: classroom/web/build_notes.js $(wildcard lecture_notes/*.md l
 	@test -f /usr/share/javascript/katex/katex.min.js || { echo "make web needs Debian's libjs-katex: apt-get install libjs-katex"; exit 1; }
 	@mkdir -p build/web
 	node classroom/web/build_notes.js $@ build/web/notes/figures
+# The code view: bdpt.cpp highlighted by Debian's highlight.js at build time (build_code.js).
+build/web/code.js: classroom/web/build_code.js bdpt.cpp classroom/metrics.h classroom/figures.h
+	@test -f /usr/share/javascript/highlight.js/highlight.min.js || { echo "make web needs Debian's libjs-highlight.js: apt-get install libjs-highlight.js"; exit 1; }
+	@mkdir -p build/web
+	node classroom/web/build_code.js $@
+build/web/highlight.css: /usr/share/javascript/highlight.js/styles/atom-one-dark.css
+	@mkdir -p build/web
+	cp $< $@
 build/web/katex/katex.min.css: /usr/share/javascript/katex/katex.min.css
 	@mkdir -p build/web/katex
 	cp -rL /usr/share/javascript/katex/fonts build/web/katex/
@@ -284,7 +299,7 @@ uneven: build/uneven
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize test-homework homework grade web serve-web test-web bench-web fuzz bench efficiency metropolis uneven refs charts panels class figures help clean FORCE
+.PHONY: all run test test-sanitize test-homework homework grade web serve-web test-web bench-web fuzz bench efficiency metropolis uneven refs web-refs charts panels class figures help clean FORCE
 
 # ---- Homework (classroom/homework/): tasks cut from bdpt.cpp, graded by the physics.
 # make homework [TASKS="H2 H5"]: the student's folder build/homework/ (bdpt.cpp with the tasks'

@@ -1433,7 +1433,7 @@ struct MisSum {
     Heuristic heuristic;
     double sum = 0;
     int larger = 0, equal = 0;
-    void add(double r) {
+    void add(double r, int /*s: which strategy*/ = 0, bool /*merge*/ = false) {
         constexpr double kTie = 1e-4;
         if (heuristic != Heuristic::Max) {
             sum += misPower(heuristic, r);
@@ -1449,12 +1449,13 @@ struct MisSum {
 };
 
 // The walk: adds to m every other strategy able to make the path light[0..s-1] + camera[t-1..0]
-// met at `j`, relative to p_ref = p_{s,t} / r0 (r0 = 1 weighs (s,t) itself; a merge passes its
-// own density relative to p_{s,t}). The strategy that moves vertex x to the other side multiplies
-// the density by pdfRev(x)/pdfFwd(x). Merges (mergeEta > 0, vcm): the merge at x, once x has
-// moved to the camera side (light side), has the density p * mergeEta * pdfFwd(x), with its own
-// subpath's pdfFwd.
-inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta, const Junction& j, double r0, MisSum& m) {
+// met at `j`, as m.add(r, s') for strategy (s', s+t-s'), r relative to p_ref = p_{s,t} / r0 (r0 = 1
+// weighs (s,t) itself; a merge passes its own density relative to p_{s,t}). Moving vertex x to the
+// other side multiplies the density by pdfRev(x)/pdfFwd(x). Merges (vcm, mergeEta > 0): the merge
+// at x, once x has moved to the other side, has the density p * mergeEta * pdfFwd(x), with its own
+// subpath's pdfFwd: m.add(r, s', true), s' the light vertices up to x. m: a MisSum, or the page's list.
+template <class Sum>
+inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta, const Junction& j, double r0, Sum& m) {
     auto cameraRev = [&](int i) { return i == t - 1 ? j.ptRev : i == t - 2 ? j.ptMinusRev : camera[i].pdfRev; };
     auto lightRev = [&](int i) { return i == s - 1 ? j.qsRev : i == s - 2 ? j.qsMinusRev : light[i].pdfRev; };
     // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
@@ -1463,16 +1464,16 @@ inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta
     double r = r0;
     for (int i = t - 1; i > 0; --i) {  // more light vertices: strategies (s+1, t-1), ...
         r *= densityRatio(cameraRev(i), camera[i].pdfFwd);
-        if (!cameraDelta(i) && !cameraDelta(i - 1)) m.add(r);
+        if (!cameraDelta(i) && !cameraDelta(i - 1)) m.add(r, s + t - i);
         bool becomesLightVertex0 = s == 0 && i == t - 1;  // the light's own vertex is not merged
-        if (mergeEta > 0 && !cameraDelta(i) && !becomesLightVertex0) m.add(r * mergeEta * camera[i].pdfFwd);
+        if (mergeEta > 0 && !cameraDelta(i) && !becomesLightVertex0) m.add(r * mergeEta * camera[i].pdfFwd, s + t - i, true);
     }
     r = r0;
     for (int i = s - 1; i >= 0; --i) {  // more camera vertices: strategies (s-1, t+1), ...
         r *= densityRatio(lightRev(i), light[i].pdfFwd);
         bool deltaBefore = i > 0 ? lightDelta(i - 1) : light[0].deltaPosition;
-        if (!lightDelta(i) && !deltaBefore) m.add(r);
-        if (mergeEta > 0 && i > 0 && !lightDelta(i)) m.add(r * mergeEta * light[i].pdfFwd);
+        if (!lightDelta(i) && !deltaBefore) m.add(r, i);
+        if (mergeEta > 0 && i > 0 && !lightDelta(i)) m.add(r * mergeEta * light[i].pdfFwd, i + 1, true);
     }
 }
 
@@ -3737,8 +3738,7 @@ inline std::string summaryLine(const CommandLine& cl, const RenderResult& r, con
 
 // What a method's last pass leaves to say: the chains' b and acceptance (Veach's per mutation for
 // mlt), and the share of the energy ir's clamp removed (its bias, panel (e)).
-inline std::string methodSummary(const SampleOptions& opt, const RenderResult& r) {
-    const MetropolisPass& mp = r.method.metropolis;
+inline std::string methodSummary(const SampleOptions& opt, const MetropolisPass& mp, double clampRemoved) {
     long long accepted = 0, proposed = 0, acceptedBy[4] = {0, 0, 0, 0}, proposedBy[4] = {0, 0, 0, 0};
     for (const PrimarySampleChain& c : mp.chains) accepted += c.accepted, proposed += c.proposed;
     for (const PathChain& c : mp.paths) {
@@ -3764,7 +3764,7 @@ inline std::string methodSummary(const SampleOptions& opt, const RenderResult& r
         s += " (a proposal that could not be made counts as refused)\n";
     }
     if (opt.method == Method::IR && opt.ir.clamp > 0) {
-        std::snprintf(text, sizeof text, "clamp %g removed %g%% of the energy gathered from VPLs\n", opt.ir.clamp, 100 * r.clampRemoved());
+        std::snprintf(text, sizeof text, "clamp %g removed %g%% of the energy gathered from VPLs\n", opt.ir.clamp, 100 * clampRemoved);
         s += text;
     }
     return s;
@@ -3800,7 +3800,7 @@ inline int runLecture(const std::vector<std::string>& args, std::ostream& out, s
         err << "bdpt: cannot write " << cl.out << ", " << pfm << " or the strategy images\n";
         return 1;
     }
-    if (!cl.quiet) out << summaryLine(cl, r, pfm) << methodSummary(cl.opt, r);
+    if (!cl.quiet) out << summaryLine(cl, r, pfm) << methodSummary(cl.opt, r.method.metropolis, r.clampRemoved());
     return 0;
 }
 

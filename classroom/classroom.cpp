@@ -116,16 +116,8 @@ inline int runImageTool(const ClassroomLine& cl, std::ostream& out, std::ostream
 // What a method adds to the summary line: vcm's radius and light vertices (counted over the passes
 // by the classroom), then the lecture's methodSummary (the chains' b and acceptance, the clamp).
 inline void printMethodSummary(const ClassroomLine& cl, const Scene& scene, const RenderResult& r, const VcmTotals& vcm, std::ostream& out) {
-    char text[256];
-    if (cl.opt.method == Method::VCM) {
-        double pixelPasses = double(r.passes) * r.image.width * r.image.height;
-        std::snprintf(text, sizeof text, "vcm: radius %g in pass 1, %g in pass %d; %.1f light vertices per pixel and pass, %.1f of them "
-                      "mergeable; light subpaths and grid %.1f MB (%.0f bytes per light vertex)\n", mergeRadius(scene, cl.opt, 0),
-                      mergeRadius(scene, cl.opt, r.passes - 1), r.passes, vcm.lightVertices / pixelPasses, vcm.mergeable / pixelPasses,
-                      vcm.mostBytes / 1e6, vcm.mostBytes * double(r.passes) / std::max(1.0, double(vcm.lightVertices)));
-        out << text;
-    }
-    out << methodSummary(cl.opt, r);
+    if (cl.opt.method == Method::VCM) out << vcmSummary(scene, cl.opt, r.passes, vcm);
+    out << methodSummary(cl.opt, r.method.metropolis, r.clampRemoved());
 }
 
 // Writes the render's files: the PNG, its PFM and (--strategies) the strategy images and pyramids.

@@ -118,22 +118,6 @@ struct PassLog {
     }
 };
 
-// vcm's light vertices over the passes: the most one pass held, and how many in all.
-struct VcmTotals {
-    size_t mostBytes = 0;
-    long long lightVertices = 0, mergeable = 0;
-    void add(const VcmPass& vp) {
-        size_t bytes = vp.paths.capacity() * sizeof(Subpath) + vp.stored.capacity() * sizeof(VcmPass::Stored) +
-                       vp.grid.bucketStart.capacity() * sizeof(uint32_t);
-        for (const std::vector<PathVertex>& row : vp.rowVertices) {
-            bytes += row.capacity() * sizeof(PathVertex);
-            lightVertices += (long long)row.size();
-        }
-        mostBytes = std::max(mostBytes, bytes);
-        mergeable += (long long)vp.stored.size();
-    }
-};
-
 // The classroom's render loop: the lecture's passes (Rendering), with after each one the pass
 // handed to `watch` (the log, the live image, a side-by-side panel), a Ctrl-C honoured between
 // passes, and the progress bar drawn by a thread of its own from the rows done in the pass.

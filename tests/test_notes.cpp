@@ -902,6 +902,9 @@ static std::vector<RunQuote> runQuoteTable() {
     const std::string example = "./bdpt scenes/cornell.scene --method pt --spp 64 --res 64x64 --seed 1 --ref scenes/refs/cornell.pfm --out build/notes/example-pt.png";
     const std::string ptDirect = "./bdpt scenes/cornell.scene --method pt --maxdepth 1 --res 24x24 --spp 4 --ref tests/refs/cornell-direct.pfm --out build/notes/pt-direct.png";
     return {
+        {p1, {"./bdpt scenes/cornell-glass.scene --side-by-side \"pt,nee,lt,ir,ir --clamp 1e-5,bdpt\" --spp 40 --res 200x200 --title \"Results from different "
+              "techniques: 40 paths per pixel\" --out build/notes/six-panels-40.png"}, "", {},
+         {"pt's sample costs {0.rays#1:%.2f} rays and bdpt's {0.rays#6:%.2f}"}, true},
         {p1, {"./bdpt scenes/cornell-glass.scene --side-by-side \"lt,ir --clamp 1e-5,bdpt\" --spp 64 --res 64x64 --ref scenes/refs/cornell-glass.pfm --out build/notes/bias.png"},
          "", {}, {"prints bias {0.bias#1:%+.2f}% for lt", "{0.bias#2:%+.2f}% for clamped ir", "and {0.bias#3:%+.2f}% for bdpt"}},
         {p2, {"./bdpt scenes/cornell.scene --side-by-side lt,pt --maxdepth 1 --spp 4 --res 192x192 --out build/notes/direct.png"}, "", {},
@@ -1260,6 +1263,7 @@ static std::vector<Quote> testBounds() {
         {"10m-mirrors-and-glass.md", "s = 0 carries under 5% of the caustic"},
         {"10m-mirrors-and-glass.md", "within 1.6 times light tracing's"},
         {"14-power-versus-radiance.md", "within 10% of eta^2"},
+        {"01-path-sampling-techniques.md", "(11.95 in the page"},  // make test-web reads it from the page's panel
         {"appendix-c-quasi-random-numbers.md", "falls by more than 32x with Sobol points (16x is 1/N), and ends below 0.2x"},
     };
 }

@@ -5,6 +5,7 @@
 "use strict";
 
 const MAX_PANELS = 6;
+const PYRAMID_LENGTH = 5;  // the pyramid's rows: paths up to 5 segments (page 15's exercise asks for row k = 5)
 const COLOURS = ["#ff6b6b", "#4dabf7", "#51cf66", "#fcc419", "#cc5de8", "#e9ecef"];
 const $ = (id) => document.getElementById(id);
 
@@ -13,7 +14,7 @@ const $ = (id) => document.getElementById(id);
 const METHODS = {
     pt: "(a) Unidirectional eye tracing: a path counts light only when it hits a lamp by chance (page 1).",
     nee: "(b) Eye tracing with next event: at every diffuse hit a shadow ray to a point on a lamp (page 2).",
-    "nee --mis": "(b) with MIS: next event and hitting the lamp combined by the balance heuristic (page 10).",
+    "nee --mis": "(b) with MIS: next event and hitting the lamp combined by the power heuristic (pages 9, 10).",
     lt: "(c) Light tracing: paths from the lamps, each hit joined to the camera; it cannot see a mirror or glass from the camera (page 2).",
     ir: "(d) Instant radiosity: light paths stored as virtual point lights, gathered at the eye's first diffuse hit; bright blotches in corners (page 1).",
     "ir --clamp": "(e) Instant radiosity clamped: the blotches gone, and their energy with them: biased (page 1).",
@@ -26,24 +27,36 @@ const METHODS = {
     mmlt: "Multiplexed Metropolis: chains over the random numbers, the path length and the strategy (page 16).",
     mlt: "Veach's Metropolis light transport: the chain mutates the paths themselves (page 17).",
 };
-// Which scenes show a mistake (a test on the scene's text), and what to look for.
+// Which scenes show a mistake (a test on the scene's text), and what to look for: `look` says what
+// the mistake is, `on` what it does to this method on the scene that shows it best (scene).
 const hasSpecular = (text) => /^\s*material\s+\S+\s+(glass|mirror)\b/m.test(text);
 const hasGlass = (text) => /^\s*material\s+\S+\s+glass\b/m.test(text);
 const hasShadingNormals = (text) => /^\s*(quad|sphere)\b.*\s(bump|tilt)\s/m.test(text);
 const MISTAKES = {
-    "--symmetric-refraction": { shows: hasGlass, needs: "glass or water", scene: "refraction",
-        look: "the two refraction rules swapped: light paths through the water scaled by eta^2 as radiance is; with lt the floor under the water 1.77 times too bright (page 14)" },
-    "--no-adjoint-correction": { shows: hasShadingNormals, needs: "shading normals (bump or tilt)", scene: "shading-normals",
-        look: "light paths use the shading-normal BSDF unchanged (no adjoint): with lt the bumped floor and balls too bright in some places, too dark in others (page 13)" },
-    "--delta-density-one": { shows: hasSpecular, needs: "a mirror or glass", scene: "glass-box",
-        look: "pbrt's convention, a density of 1 after a mirror or glass: the caustic's weights wrong; look at the pyramid's s=4 t=1 weighted tile, darker (page 10M)" },
-    "--no-scramble": { shows: () => true, needs: "", scene: "cornell",
-        look: "Sobol points without their scrambles: every pixel draws the same points; smooth-looking, patterned, biased (page 9, Appendix C)" },
-    "--fixed-ray-offset": { shows: (text, name) => /thin-gap/.test(name), needs: "a lamp close to a surface", scene: "thin-gap",
-        look: "new rays pushed off surfaces by a fixed distance: lt loses the light of a lamp 0.5 mm above the floor (about a fifth), seen after thousands of samples" },
-    "--fixed-start": { shows: () => true, needs: "", scene: "door-hidden",
-        look: "every Markov chain starts from one fixed state: start-up bias, the error stays high (page 16)" },
+    "--symmetric-refraction": { shows: hasGlass, needs: "glass or water", scene: "refraction", page: "14-power-versus-radiance",
+        look: "the two refraction rules swapped: radiance crossing glass or water without its eta^2, importance with it (page 14)",
+        on: { pt: "pt's floor seen through the water 1.77 times too dark", lt: "lt's floor under the water 1.77 times too bright (lt cannot see the sky through the surface: its bias is large either way)" } },
+    "--no-adjoint-correction": { shows: hasShadingNormals, needs: "shading normals (bump or tilt)", scene: "shading-normals", page: "13-shading-normals",
+        look: "light paths use the shading-normal BSDF unchanged, without the adjoint's factor: light-traced images too bright in some places, too dark in others (page 13)",
+        on: { lt: "lt's bumped floor and balls brighter in places and darker in others than nee's, whose camera paths need no adjoint (ratio of means about 1.06)" } },
+    "--delta-density-one": { shows: hasSpecular, needs: "a mirror or glass", scene: "glass-box", page: "10m-mirrors-and-glass",
+        look: "pbrt's convention, a density of 1 after a mirror or glass: the MIS weights of caustic paths wrong (page 10M)",
+        on: { bdpt: "the caustic under the glass ball goes to s=0 t=5's speckles: click each panel, then compare the pyramid's s=4 t=1 weighted tiles; its RMSE is the larger" } },
+    "--no-scramble": { shows: () => true, needs: "", scene: "cornell", page: "09-russian-roulette-and-sampling",
+        look: "Sobol points without their scrambles: every pixel draws the same points, so every pixel errs the same way (page 9, Appendix C)",
+        on: { "nee --mis": "at 16 samples a smooth, patterned image whose RMSE stays above the scrambled one's" } },
+    "--fixed-ray-offset": { shows: (text, name) => /thin-gap/.test(name), needs: "a lamp close to a surface", scene: "thin-gap", page: "06-extending-paths",
+        look: "new rays pushed off surfaces by a fixed distance, not by the hit point's error bound (page 6)",
+        on: { lt: "lt loses the light of a lamp 0.5 mm above the floor: about 0.80 of the right mean (nee, which leaves from the floor's side, is right either way)" } },
+    "--fixed-start": { shows: () => true, needs: "", scene: "door-hidden", page: "16-metropolis-sampling",
+        look: "every Markov chain starts from one fixed state, not from the bootstrap's: start-up bias (page 16)",
+        on: { pssmlt: "an orange blotch where the chains began, and an error that stays high" } },
 };
+// What a mistake does to a method on a scene: what it is, and on its own scene what to look for.
+function mistakeText(flag, entry, name) {
+    const m = MISTAKES[flag], method = Object.keys(m.on).find((k) => (entry + " ").startsWith(k + " "));
+    return m.look + (method && shortName(name || "") === m.scene ? "; here: " + m.on[method] : "");
+}
 // The lessons of the "Show" menu: a scene and its panels, with what to look at.
 const PRESETS = [
     { name: "the slides' results (a)-(f) at equal time", scene: "cornell-glass", entries: ["pt", "nee", "lt", "ir", "ir --clamp 1e-5", "bdpt"], page: "01-path-sampling-techniques" },
@@ -51,13 +64,14 @@ const PRESETS = [
     { name: "MIS heuristics: balance, power, max, uniform (page 10)", scene: "cornell", entries: ["bdpt", "bdpt --heuristic power", "bdpt --heuristic max", "bdpt --heuristic uniform", "nee", "nee --mis"], page: "10-combining-estimators" },
     { name: "the SDS paths: pt, bdpt and vcm with a point light (pages 12, 15)", scene: "sds-point", entries: ["pt", "bdpt", "vcm"], page: "15-vertex-merging" },
     { name: "Metropolis where bdpt struggles: door-hidden (pages 16, 17)", scene: "door-hidden", entries: ["bdpt", "pssmlt", "mmlt", "mlt"], resolution: "128x128", page: "16-metropolis-sampling" },
-    ...Object.entries(MISTAKES).map(([flag, m]) => {
-        const base = { "--symmetric-refraction": "lt", "--no-adjoint-correction": "lt", "--delta-density-one": "bdpt", "--no-scramble": "nee --mis",
-                       "--fixed-ray-offset": "lt", "--fixed-start": "pssmlt" }[flag];
-        const extra = flag === "--no-adjoint-correction" ? ["nee"] : [];
-        return { name: `deliberate mistake ${flag} on ${m.scene}`, scene: m.scene, entries: [...extra, base, `${base} ${flag}`],
-                 resolution: m.scene === "door-hidden" ? "128x128" : undefined, seconds: m.scene === "thin-gap" ? 30 : undefined };
-    }),
+    // Each mistake beside the right method, at settings where the picture shows it and a number
+    // (the ratio of means, the RMSE) says which is right.
+    { name: "deliberate mistake --symmetric-refraction on refraction (page 14)", scene: "refraction", entries: ["pt", "pt --symmetric-refraction", "lt", "lt --symmetric-refraction"], page: "14-power-versus-radiance" },
+    { name: "deliberate mistake --no-adjoint-correction on shading-normals (page 13)", scene: "shading-normals", entries: ["nee", "lt", "lt --no-adjoint-correction"], page: "13-shading-normals" },
+    { name: "deliberate mistake --delta-density-one on glass-box (page 10M)", scene: "glass-box", entries: ["bdpt", "bdpt --delta-density-one"], resolution: "128x128", seconds: 20, page: "10m-mirrors-and-glass" },
+    { name: "deliberate mistake --no-scramble on cornell (page 9)", scene: "cornell", entries: ["nee --mis --sampler random", "nee --mis", "nee --mis --no-scramble"], resolution: "128x128", spp: 16, page: "09-russian-roulette-and-sampling" },
+    { name: "deliberate mistake --fixed-ray-offset on thin-gap (page 6)", scene: "thin-gap", entries: ["nee", "lt", "lt --fixed-ray-offset"], seconds: 30, page: "06-extending-paths" },
+    { name: "deliberate mistake --fixed-start on door-hidden (page 16)", scene: "door-hidden", entries: ["pssmlt", "pssmlt --fixed-start"], resolution: "128x128", page: "16-metropolis-sampling" },
 ];
 // Scenes in the lecture's order (keys 1-9 pick the first nine).
 const SCENE_ORDER = ["cornell", "cornell-glass", "cornell-point", "indirect", "refraction", "shading-normals", "energy-generator", "glass-box",
@@ -80,6 +94,9 @@ const state = {
     notesPage: null,
     silenceLimitMs: 60000,  // a running panel's worker silent this long has died (watchWorkers)
     loading: true,          // until loadState has read the link: nothing overwrites it before
+    commandReference: "",   // a notes command's --ref (a file the page holds), until the scene changes
+    pageReferences: new Map(),  // an edited scene's text -> the reference the page rendered for it
+    referenceJob: null,     // that rendering, in a worker of its own, paused while panels run
 };
 
 // ---- tone mapping: the PNG's sRGB curve (bdpt.cpp's toSRGB8), the scene's exposure plus the slider's.
@@ -120,6 +137,7 @@ function loadSceneList() {
 }
 function selectScene(name) {
     if (!BDPT_SCENES[name]) name = scenePath(shortName(name)) || "scenes/cornell.scene";
+    setCommandReference("");
     $("scene").value = name;
     $("scene-text").value = BDPT_SCENES[name];
     $("scene-error").hidden = true;
@@ -127,12 +145,75 @@ function selectScene(name) {
     $("resolution").options[0].textContent = own ? `the scene's own (${own[1]} × ${own[2]})` : "the scene's own";
     sceneLines();
     describeEntries();
+    referenceState();
     saveState();
 }
 function sceneLines() {
     const n = $("scene-text").value.split("\n").length;
     $("scene-lines").textContent = Array.from({ length: n }, (_, i) => i + 1).join("\n");
     $("scene-lines").scrollTop = $("scene-text").scrollTop;
+}
+
+// ---- references: a notes command's --ref, and the one the page renders for an edited scene
+function setCommandReference(path) {
+    state.commandReference = path;
+    $("command-reference").hidden = !path;
+    $("command-reference-name").textContent = path;
+}
+// The reference's size for the current image setting: at most 64 pixels wide, the image's own
+// aspect, and a whole fraction of it (so that a panel and it meet: commonWidth in bdpt-web.cpp).
+function referenceSize() {
+    let { width: w, height: h } = options();
+    if (!w) {
+        const own = sceneText().match(/^\s*camera(?:\s+\S+){10}\s+(\d+)\s+(\d+)/m);
+        [w, h] = own ? [Number(own[1]), Number(own[2])] : [64, 64];
+    }
+    for (let f = Math.max(1, Math.ceil(w / 64)); f <= w; ++f) if (w % f === 0 && h % f === 0 && w / f <= 64) return [w / f, h / f];
+    return [w, h];
+}
+// bdpt on this text in a worker of its own, 64 pixels wide, for `seconds` (or `spp` passes), paused
+// while panels run: the browser gives a worker no priority, so a run keeps its cores.
+function renderReference({ seconds = 300, spp = 0 } = {}) {
+    stopReference();
+    const [width, height] = referenceSize(), text = sceneText();
+    const worker = new Worker(state.workerURL), job = { worker, text, width, height, passes: 0, image: null, id: state.nextId++, done: false };
+    state.referenceJob = job;
+    state.pageReferences.set(text, job);
+    worker.onmessage = (e) => {
+        const m = e.data;
+        if (m.type === "ready" || m.id !== job.id) return;
+        if (m.type === "error") { job.done = true, job.error = m.error; }
+        else if (m.type === "frame" || m.type === "done") {
+            if (m.passes > 0) job.image = m.image, job.passes = m.passes;
+            if (m.type === "done") job.done = true;
+        }
+        referenceState();
+        if (job.done && job.whenDone) job.whenDone();
+    };
+    worker.postMessage({ type: "start", id: job.id, sceneText: text, sceneName: sceneName(), entry: "bdpt", width, height, seed: 7, spp, seconds: spp ? 0 : seconds,
+                         strategyLength: 0, reference: "none" });
+    if (state.running) worker.postMessage({ type: "pause" });
+    referenceState();
+    return new Promise((resolve) => { job.whenDone = resolve; });
+}
+function stopReference() {
+    const job = state.referenceJob;
+    if (!job) return;
+    if (!job.done) job.worker.postMessage({ type: "stop" });
+    setTimeout(() => job.worker.terminate(), 2000);
+    state.referenceJob = null;
+}
+function pauseReference(pause) {
+    const job = state.referenceJob;
+    if (job && !job.done) job.worker.postMessage({ type: pause ? "pause" : "resume" });
+}
+function referenceState() {
+    const own = state.pageReferences.get(sceneText()), edited = sceneText() !== BDPT_SCENES[sceneName()];
+    $("render-reference").disabled = !edited;
+    $("reference-state").textContent = !edited ? "the committed scene has its reference (scenes/refs/)"
+        : !own ? "this text has no reference: the panels show no error"
+        : own.error ? "its reference failed: " + own.error
+        : `its reference: bdpt, ${own.width}×${own.height}, ${own.passes} spp${own.done ? "" : state.running ? " so far (paused while the panels run)" : " so far (rendering)"}; the next Start measures against it`;
 }
 
 // ---- workers: their script is engine.js's text, started from a Blob (file:// forbids a Worker
@@ -186,20 +267,23 @@ function onWorkerMessage(slot, m) {
         return;
     }
     if (m.type === "checked") { state.onChecked && state.onChecked(m.error); return; }
+    if (m.type === "path") { receivePath(slot, m); return; }
     const panel = state.panels.find((p) => p.slot === slot && p.id === m.id);
     if (!panel || panel.done) return;  // a message from a run that was replaced, or of a panel ended
     if (m.type === "error") {
         endPanel(panel, m.error.replace("(see --help)", "(see the options under 'The options an entry may carry')"));
     } else if (m.type === "started") {
         Object.assign(panel, { exposure: m.exposure, width: m.width, height: m.height, spp: m.spp, limitSeconds: m.seconds,
-                               referenceWidth: m.referenceWidth, referenceHeight: m.referenceHeight, recordsStrategies: m.strategies });
+                               referenceWidth: m.referenceWidth, referenceHeight: m.referenceHeight, recordsStrategies: m.strategies,
+                               referenceName: m.referenceName, commonWidth: m.commonWidth });
         panel.canvas.width = m.width, panel.canvas.height = m.height;
         panel.canvas.style.aspectRatio = `${m.width} / ${m.height}`;
         if (m.threadsGiven) panel.notes.push("--threads: a panel renders on one thread in the page");
-        if (m.strategies) { if (!state.strategyPanel) state.strategyPanel = panel; pyramidChoices(); }
+        if (m.strategies) pyramidChoices();
     } else if (m.type === "frame" || m.type === "done") {
         Object.assign(panel, { passes: m.passes, rowsDone: m.rowsDone, seconds: m.seconds, image: m.image, mean: m.mean, rmse: m.rmse,
-                               rmseWithoutLamp: m.rmseWithoutLamp, bias: m.bias, comparedWidth: m.comparedWidth, nonFinite: m.nonFinite, outOfMemory: m.outOfMemory });
+                               rmseWithoutLamp: m.rmseWithoutLamp, bias: m.bias, comparedWidth: m.comparedWidth, nonFinite: m.nonFinite, outOfMemory: m.outOfMemory,
+                               relMse: m.relMse, summary: m.summary });
         if (m.strategies) {
             panel.strategies = m.strategies;
             if (panel === state.strategyPanel) state.pyramidDirty = state.barsDirty = true;
@@ -244,6 +328,21 @@ function checkScene() {
     return new Promise((resolve) => ask(resolve, 1));
 }
 
+// What a panel is measured against: an entry's own scene, its committed reference; a notes
+// command's --ref, that file; an edited scene, the reference the page rendered for its text, or
+// none (never the unedited scene's: its error would say the opposite of the truth).
+function referenceFor(panel, entryOwnScene) {
+    if (entryOwnScene) return { reference: "" };
+    if (sceneText() !== BDPT_SCENES[sceneName()]) {
+        const own = state.pageReferences.get(sceneText());
+        panel.edited = own ? "rendered" : "none";
+        if (!own || !own.image) return { reference: "none" };
+        panel.pageReferencePasses = own.passes;
+        return { referenceImage: { width: own.width, height: own.height, data: own.image.slice() } };
+    }
+    return { reference: state.commandReference ? "/" + state.commandReference : "" };
+}
+
 async function start() {
     if (state.running || !state.workers.length) return;
     const list = entries();
@@ -267,7 +366,9 @@ async function start() {
     $("panels").replaceChildren();
     state.panels = [];
     state.strategyPanel = null;
+    pauseReference(true);
     state.run = { ...opt, sceneLabel: $("scene").selectedOptions[0].textContent };
+    state.runCount = (state.runCount || 0) + 1;
     document.body.classList.add("has-run");
     state.startedAt = performance.now();
     list.slice(0, MAX_PANELS).forEach((text, slot) => {
@@ -278,12 +379,15 @@ async function start() {
         panel.sceneName = name;
         if (scene && !sceneTextToUse) { endPanel(panel, `the page has no scene ${scene}: its scenes are scenes/*.scene and tests/energy-generator-flat.scene`); return; }
         warnAboutMistakes(panel, entry, sceneTextToUse, name);
-        // bdpt and vcm panels record their strategies for the pyramid (paths up to 4 segments).
-        const strategyLength = $("record-strategies").checked && /^(bdpt|vcm)\b/.test(entry) ? 4 : 0;
+        // bdpt and vcm panels record their strategies for the pyramid (paths up to 5 segments).
+        panel.strategyLength = $("record-strategies").checked && /^(bdpt|vcm)\b/.test(entry) ? PYRAMID_LENGTH : 0;
+        const reference = referenceFor(panel, scene);
         state.workers[slot].lastMessage = performance.now();
-        state.workers[slot].postMessage({ type: "start", id: panel.id, sceneText: sceneTextToUse, sceneName: name, entry,
-                                          width: opt.width, height: opt.height, seed: opt.seed, spp: opt.spp, seconds: opt.seconds, strategyLength });
+        state.workers[slot].postMessage({ type: "start", id: panel.id, sceneText: sceneTextToUse, sceneName: name, entry, width: opt.width, height: opt.height,
+                                          seed: opt.seed, spp: opt.spp, seconds: opt.seconds, strategyLength: panel.strategyLength, ...reference });
     });
+    // The pyramid shows the first bdpt or vcm panel in order until a click on another chooses it.
+    state.strategyPanel = state.panels.find((p) => p.strategyLength > 0) || null;
     pyramidChoices();
     $("stop").disabled = false;
     state.lastFrame = undefined;
@@ -296,17 +400,20 @@ async function start() {
 }
 
 // Stop: every panel is asked; one whose worker has not answered within 2 s ends without it.
+// (Only this run's panels: a run started within the 2 s is not stopped by it.)
 function stop() {
     if (!state.running) return;
-    state.panels.forEach((p) => { if (!p.done) state.workers[p.slot].postMessage({ type: "stop" }); });
+    const panels = state.panels;
+    panels.forEach((p) => { if (!p.done) state.workers[p.slot].postMessage({ type: "stop" }); });
     setTimeout(() => {
-        for (const p of state.panels) if (!p.done) workerDied(p.slot, "stopped: its worker did not answer");
+        for (const p of panels) if (!p.done) workerDied(p.slot, "stopped: its worker did not answer");
     }, 2000);
 }
 
 function finishRun() {
     if (!state.running) return;
     state.running = false;
+    pauseReference(false);
     clearInterval(state.watchdog);
     $("start").disabled = false;
     $("stop").disabled = true;
@@ -334,7 +441,7 @@ function mistakesIn(entry) { return Object.keys(MISTAKES).filter((flag) => entry
 function warnAboutMistakes(panel, entry, text, name) {
     for (const flag of mistakesIn(entry)) {
         const m = MISTAKES[flag];
-        panel.notes.push(`deliberate mistake ${flag}: ${m.look}`);
+        panel.notes.push(`deliberate mistake ${flag}: ${mistakeText(flag, entry, name)}`);
         if (!m.shows(text, name)) panel.notes.push(`this scene cannot show it: it has no ${m.needs}; try ${m.scene} (the Show menu has it)`);
     }
     drawNotes(panel);
@@ -345,7 +452,7 @@ function describeEntries() {
         const warnings = mistakesIn(entry).filter((f) => !MISTAKES[f].shows(sceneText(), sceneName()))
             .map((f) => `${f} shows nothing on this scene (it needs ${MISTAKES[f].needs}; try ${MISTAKES[f].scene})`);
         line.textContent = warnings.join(" · ");  // the method's description is under its panel
-        input.title = text ? [describe(entry), ...mistakesIn(entry).map((f) => "deliberate mistake: " + MISTAKES[f].look)].filter((s) => s).join("\n") : "";
+        input.title = text ? [describe(entry), ...mistakesIn(entry).map((f) => "deliberate mistake: " + mistakeText(f, entry, sceneName()))].filter((s) => s).join("\n") : "";
         line.classList.toggle("warning", warnings.length > 0);
     });
 }
@@ -378,11 +485,25 @@ function makePanel(entry, slot, opt) {
     el.innerHTML = `<h2></h2><p class="what"></p><canvas width="${opt.width || 64}" height="${opt.height || 64}"></canvas><div class="stats">starting…</div>
         <div class="error"></div><ul class="notes-list"></ul><div class="downloads"><button data-kind="png">PNG</button> <button data-kind="pfm">PFM</button></div>`;
     el.querySelector("h2").textContent = entry;
+    const method = entryScene(entry).entry.split(/\s+/)[0], fn = METHOD_FUNCTIONS[method];
+    if (fn && BDPT_CODE.functions[fn]) {
+        const a = document.createElement("a");
+        a.href = "#", a.className = "code-link", a.textContent = method, a.title = `${fn}() in bdpt.cpp: open it beside the notes`;
+        a.onclick = (e) => { e.preventDefault(); state.notesScroll = $("notes-view").scrollTop; openCode(fn); };
+        el.querySelector("h2").replaceChildren(a, entry.slice(entry.indexOf(method) + method.length));
+    }
     el.querySelector(".what").textContent = describe(entryScene(entry).entry);
     const canvas = el.querySelector("canvas");
     canvas.addEventListener("click", (e) => {
         const r = canvas.getBoundingClientRect();
-        choosePixel(Math.floor((e.clientX - r.left) / r.width * canvas.width), Math.floor((e.clientY - r.top) / r.height * canvas.height));
+        if (panel.strategyLength > 0 && state.strategyPanel !== panel) {  // the pyramid and the bars follow the clicked panel
+            state.strategyPanel = panel;
+            pyramidChoices();
+            state.pyramidDirty = true;
+        }
+        const x = Math.floor((e.clientX - r.left) / r.width * canvas.width), y = Math.floor((e.clientY - r.top) / r.height * canvas.height);
+        choosePixel(x, y);
+        requestPath(panel, x, y);
     });
     const panel = { id: state.nextId++, slot, entry, el, canvas, curve: [], passes: 0, rowsDone: 0, seconds: 0, done: false, dirty: false, error: null,
                     exposure: 0, width: 0, height: 0, image: null, strategies: null, firstFrameMs: null, notes: [], comparedWidth: 0,
@@ -397,12 +518,30 @@ function drawNotes(panel) {
 }
 
 function errorText(panel) {
+    if (panel.edited === "none") return "edited scene: no reference (render one for its text under 'Edit the scene's text')";
     if (!panel.referenceWidth) return "no reference for this scene: no error";
-    if (!panel.comparedWidth) return panel.passes ? `no error: the reference is ${panel.referenceWidth}×${panel.referenceHeight}, not a power-of-two multiple of this size` : "";
-    const partial = /--maxdepth|--rr-start/.test(panel.entry) ? " (the reference has paths of every length)" : "";
+    if (!panel.comparedWidth) return panel.passes ? `no error at this size: the reference (${panel.referenceName}) is ${panel.referenceWidth}×${panel.referenceHeight}, ` +
+        "and the two meet at no common size of 16 pixels or more (64×64 has a reference for every scene)" : "";
+    const partial = /--maxdepth|--strategy-length/.test(panel.entry) ? " (the reference has paths of every length)" : "";
     const at = panel.comparedWidth !== panel.width ? ` at ${panel.comparedWidth}×${panel.comparedWidth * panel.height / panel.width}` : "";
     const bias = `${panel.bias >= 0 ? "+" : ""}${(100 * panel.bias).toFixed(2)}%`;  // as ./bdpt prints it
-    return `RMSE${at} <b>${fmt4(panel.rmseWithoutLamp)}</b> (${fmt4(panel.rmse)} with the lamp's pixels) · bias <b>${bias}</b>${partial}`;
+    const against = panel.edited === "rendered" ? ` against the reference the page rendered for this text (bdpt, ${panel.pageReferencePasses} spp: its own noise included)`
+        : panel.referenceName && !/^scenes\/refs\/[\w-]+\.pfm$/.test(panel.referenceName) ? ` against ${panel.referenceName}` : "";
+    return `RMSE${at} <b>${fmt4(panel.rmseWithoutLamp)}</b> (${fmt4(panel.rmse)} with the lamp's pixels) · relMSE ${fmt4(panel.relMse)} · bias <b>${bias}</b>${against}${partial}`;
+}
+// The rest of ./bdpt's summary: rays per sample, vcm's light vertices and memory, the chains' b
+// and acceptance, the energy the clamp removed: a line each, as the program prints them.
+// A panel with a deliberate mistake beside the same entry without it: the ratio of their means,
+// as ./bdpt --ratio prints it (which of the two is right, the error against the reference says).
+function ratioText(panel) {
+    const flags = mistakesIn(panel.entry);
+    if (!flags.length || !panel.passes) return "";
+    const plain = panel.entry.split(/\s+/).filter((w) => !flags.includes(w)).join(" ");
+    const right = state.panels.find((p) => p.entry === plain && p.passes > 0);
+    return right && right.mean > 0 ? ` · ratio of means <b>${(panel.mean / right.mean).toFixed(4)}</b> against ${escapeHtml(plain)}` : "";
+}
+function summaryText(panel) {
+    return (panel.summary || "").trim().split("\n").filter((l) => l).map((l) => `<div class="summary">${escapeHtml(l)}</div>`).join("");
 }
 function drawPanel(panel) {
     if (!panel.image) return;
@@ -414,8 +553,8 @@ function drawPanel(panel) {
         g.strokeRect(state.pixel.x - 1.5, state.pixel.y - 1.5, 4, 4);
     }
     const progress = panel.rowsDone > 0 && !panel.done ? ` · pass ${panel.passes + 1}: ${Math.round(100 * panel.rowsDone / panel.height)}% of its rows` : "";
-    panel.el.querySelector(".stats").innerHTML = `<b>${panel.passes}</b> spp · <b>${panel.seconds.toFixed(1)}</b> s · mean <b>${fmt4(panel.mean)}</b> · ${errorText(panel)}${progress}` +
-        (panel.nonFinite > 0 ? ` · ${panel.nonFinite} non-finite dropped` : "") + (panel.outOfMemory ? " · out of memory: stopped" : "");
+    panel.el.querySelector(".stats").innerHTML = `<b>${panel.passes}</b> spp · <b>${panel.seconds.toFixed(1)}</b> s · mean <b>${fmt4(panel.mean)}</b>${ratioText(panel)} · ${errorText(panel)}${progress}` +
+        (panel.nonFinite > 0 ? ` · ${panel.nonFinite} non-finite dropped` : "") + (panel.outOfMemory ? " · out of memory: stopped" : "") + summaryText(panel);
 }
 
 function fileStem(panel) {
@@ -453,12 +592,19 @@ function logTicks(lo, hi) {
     return ticks;
 }
 function drawChart() {
-    const svg = $("chart"), W = 900, H = 460, left = 90, right = 20, top = 15, bottom = 60;
+    // a phone gets a narrower drawing, so that its labels are as large there as on a laptop
+    const svg = $("chart"), W = innerWidth < 700 ? 560 : 900, H = innerWidth < 700 ? 420 : 460, left = 90, right = 20, top = 15, bottom = 60;
+    svg.setAttribute("viewBox", `0 0 ${W} ${H}`);
     const points = state.panels.flatMap((p) => p.curve).filter(([t, e]) => t > 0 && e > 0);
     if (points.length < 2) {
-        const noReference = state.panels.length && state.panels.every((p) => p.done || p.referenceWidth) && !state.panels.some((p) => p.referenceWidth);
-        svg.innerHTML = `<text x="${W / 2}" y="${H / 2}" text-anchor="middle" font-size="22">${
-            noReference ? "this scene has no reference (scenes/refs/): no error to chart" : "the curves appear as the panels render their passes"}</text>`;
+        // Say why there is no curve, in the caption too (it may still list the last run's panels).
+        const started = state.panels.filter((p) => p.width), measured = started.filter((p) => p.comparedWidth || (!p.passes && p.referenceWidth && !p.edited));
+        const why = !state.panels.length ? "no panel yet"
+            : started.length === state.panels.length && !measured.length ? (started.every((p) => p.edited === "none") ? "an edited scene without a reference: no error to chart"
+                : started.every((p) => !p.referenceWidth) ? "this scene has no reference (scenes/refs/): no error to chart" : "no error at this size: no reference meets it (64×64 has one for every scene)")
+            : "the curves appear as the panels render their passes";
+        svg.innerHTML = `<text x="${W / 2}" y="${H / 2}" text-anchor="middle" font-size="22">${why}</text>`;
+        $("chart-caption").textContent = "Error against time: " + why;
         return;
     }
     const ts = points.map((p) => p[0]), es = points.map((p) => p[1]);
@@ -558,8 +704,14 @@ function choosePixel(x, y) {
     state.panels.forEach((p) => (p.dirty = true));
     drawAll();
     const bars = $("bars-figure").getBoundingClientRect();
-    if (bars.top > innerHeight || bars.bottom < 0)  // out of sight: say where the click's answer is
-        showStatus(`Pixel (${x}, ${y}): its strategies are in the bar chart ${bars.top > innerHeight ? "below" : "above"} the panels`);
+    if (bars.top > innerHeight || bars.bottom < 0) {  // out of sight: say where the click's answer is, where the eye is
+        const where = `Pixel (${x}, ${y}): its strategies and one sample's paths are ${bars.top > innerHeight ? "below" : "above"} the panels: show them`;
+        showStatus(where);
+        const hint = $("tap-hint");  // on a phone the status line is screens away: a bar at the bottom
+        if (innerWidth < 1100) hint.textContent = where, hint.hidden = false;
+        clearTimeout(state.tapHintTimer);
+        state.tapHintTimer = setTimeout(() => (hint.hidden = true), 8000);
+    }
     return strategyBars();
 }
 function strategyBars() {
@@ -570,7 +722,8 @@ function strategyBars() {
                                           unweighted: luminance(st.unweighted, i), weighted: luminance(st.weighted, i) }));
 }
 function drawBars() {
-    const svg = $("bars"), bars = strategyBars(), W = 900, H = 300, left = 80, bottom = 60, top = 20;
+    const svg = $("bars"), bars = strategyBars(), W = innerWidth < 700 ? 600 : 900, H = 300, left = 80, bottom = 60, top = 20;
+    svg.setAttribute("viewBox", `0 0 ${W} ${H}`);
     if (!bars.length) {
         const has = state.panels.some((p) => /^(bdpt|vcm)\b/.test(p.entry));
         svg.innerHTML = `<text x="${W / 2}" y="${H / 2}" text-anchor="middle" font-size="22">${
@@ -593,6 +746,109 @@ function drawBars() {
     svg.innerHTML = html;
     $("bars-caption").textContent = `Pixel (${state.pixel.x}, ${state.pixel.y}) of ${panel.entry}: grey each strategy alone (unweighted), ` +
         `amber MIS-weighted; the weighted ones sum to ${fmt(sum)} of the pixel's ${fmt(luminance(panel.image, i))} (paths up to ${Math.max(...bars.map((b) => b.k))} segments)`;
+}
+
+// ---- one sample's paths (the path view): the clicked pixel's sample of the last pass, made again
+// by its worker from the pixel's own random streams: the camera subpath and the light subpath in
+// the image and from the side, each connection (s,t) that carries light, and for the path the
+// chosen one makes, every strategy that could make it: its density p and weight w in each heuristic
+// (page 7's worked path, for any pixel). Drawn weights come from the module (misWeight, misWalk).
+const HEURISTICS = ["balance", "power", "max", "uniform"];
+function requestPath(panel, x, y) {
+    if (!/^(bdpt|vcm)\b/.test(entryScene(panel.entry).entry)) return;
+    if (!panel.passes) { $("path-caption").textContent = "One sample's paths: the panel has no pass yet; click again when it has"; return; }
+    state.workers[panel.slot].postMessage({ type: "path", id: panel.id, x, y });
+}
+function receivePath(slot, m) {
+    const panel = state.panels.find((p) => p.slot === slot && p.id === m.id);
+    if (!panel || !m.sample) return;
+    const sample = JSON.parse(m.sample), connections = sample.connections;
+    // at first the connection that adds most to the pixel, weighted by the panel's heuristic
+    const h = panelHeuristic(panel);
+    let chosen = 0;
+    connections.forEach((c, i) => { if (c.C * c.w[h] > connections[chosen].C * connections[chosen].w[h]) chosen = i; });
+    state.path = { panel, x: m.x, y: m.y, sample, outline: JSON.parse(m.outline), chosen };
+    drawPath();
+}
+function panelHeuristic(panel) {
+    const m = panel.entry.match(/--heuristic\s+(\w+)/);
+    return Math.max(0, HEURISTICS.indexOf(m ? m[1] : "balance"));
+}
+// The path of connection c: x_0 ... x_k, light vertices first, the pinhole last.
+function pathVertices(sample, c) { return [...sample.light.slice(0, c.s), ...sample.camera.slice(0, c.t).reverse()]; }
+function drawPath() {
+    const v = state.path;
+    if (!v) return;
+    const { panel, sample, outline } = v, c = sample.connections[v.chosen];
+    const f4 = (x) => (x === 0 ? "0" : Number(x).toPrecision(4));
+    $("path-caption").textContent = `One sample of pixel (${v.x}, ${v.y}) of ${panel.entry}, pass ${sample.pass + 1}: the camera subpath (blue, ${sample.camera.length} vertices, ` +
+        `the pinhole first) and the light subpath (amber, ${sample.light.length}), and ${sample.connections.length} connection${sample.connections.length === 1 ? "" : "s"} (s,t) ` +
+        "that carry light (white; the chosen one thick). Left: in the image; right: from the side (depth across, the camera's up upward)." +
+        (sample.mergeEta > 0 ? " vcm: its weights count the merges too (mergeEta " + f4(sample.mergeEta) + "); the merges are not drawn." : "");
+    drawPathImage(panel, sample, c);
+    drawPathSide(sample, outline, c);
+    const connRows = sample.connections.map((x, i) => `<tr class="connection${i === v.chosen ? " chosen" : ""}" data-index="${i}"><td>s=${x.s} t=${x.t}</td><td>${x.s + x.t - 1}</td>` +
+        `<td>${f4(x.C)}</td>${x.w.map((w) => `<td>${w.toFixed(4)}</td>`).join("")}<td>${f4(x.density)}</td></tr>`).join("");
+    const sums = [0, 1, 2, 3].map((h) => c.strategies.reduce((a, st) => a + st.w[h], 0));
+    const stRows = c.strategies.slice().sort((a, b) => a.s - b.s || a.merge - b.merge).map((st) => {
+        const self = st.s === c.s && !st.merge;
+        return `<tr class="${self ? "self" : ""}" data-s="${st.s}" data-merge="${st.merge}"><td>${st.merge ? `merge at x_${st.s - 1}` : `s=${st.s} t=${c.s + c.t - st.s}`}</td>` +
+            `<td>${f4(st.density)}</td><td>${f4(st.density / c.density)}</td>${st.w.map((w) => `<td>${w.toFixed(4)}</td>`).join("")}</tr>`;
+    }).join("");
+    const k = c.s + c.t - 1;
+    $("path-tables").innerHTML =
+        `<table class="connections"><tr><th>connection</th><th>k</th><th>C<sub>s,t</sub> (unweighted)</th>${HEURISTICS.map((h) => `<th>w<sub>s,t</sub> ${h}</th>`).join("")}<th>p<sub>s,t</sub></th></tr>${connRows}</table>` +
+        `<p>The path of s=${c.s} t=${c.t}: x<sub>0</sub> … x<sub>${k}</sub> (${pathVertices(sample, c).map((x) => x.kind).join(", ")}), k = ${k} segments. ` +
+        `Every strategy that can make it, its density p (area measure, the product of its vertices' densities) and its weight in each heuristic: ` +
+        `each column of weights sums to 1 (unbiased), and the row in bold is the renderer's own w<sub>s,t</sub> above.</p>` +
+        `<table class="strategies"><tr><th>strategy</th><th>p<sub>${k},s</sub></th><th>/ p<sub>s,t</sub></th>${HEURISTICS.map((h) => `<th>${h}</th>`).join("")}</tr>${stRows}` +
+        `<tr class="sums"><td>sum</td><td></td><td></td>${sums.map((x) => `<td data-sum="${x}">${x.toFixed(4)}</td>`).join("")}</tr></table>`;
+    $("path-tables").querySelectorAll("tr.connection").forEach((row) => (row.onclick = () => { state.path.chosen = Number(row.dataset.index); drawPath(); }));
+}
+// Polylines of a subpath's vertices at the given 2-D positions (null: not drawable; the line breaks).
+function polyline(points, colour, width, dash) {
+    const runs = [[]];
+    for (const p of points) p ? runs[runs.length - 1].push(p) : runs.push([]);
+    return runs.filter((r) => r.length > 1).map((r) => `<polyline fill="none" stroke="${colour}" stroke-width="${width}" ${dash ? `stroke-dasharray="${dash}"` : ""} ` +
+        `points="${r.map(([x, y]) => `${x.toFixed(3)},${y.toFixed(3)}`).join(" ")}"/>`).join("");
+}
+function dots(points, colour, r, kind) {
+    return points.map((p, i) => (p ? `<circle class="${kind}" data-i="${i}" cx="${p[0].toFixed(3)}" cy="${p[1].toFixed(3)}" r="${r}" fill="${colour}"/>` : "")).join("");
+}
+function drawPathImage(panel, sample, c) {
+    const svg = $("path-image"), W = panel.width, H = panel.height, u = W / 64;
+    const canvas = document.createElement("canvas");
+    canvas.width = W, canvas.height = H;
+    canvas.getContext("2d").putImageData(toImageData(panel.image, W, H, panel.exposure + sliderStops()), 0, 0);
+    svg.setAttribute("viewBox", `0 0 ${W} ${H}`);
+    const cam = [sample.film, ...sample.camera.slice(1).map((v) => v.film)], light = sample.light.map((v) => v.film);
+    let html = `<image href="${canvas.toDataURL()}" x="0" y="0" width="${W}" height="${H}" style="image-rendering: pixelated" opacity="0.55"/>`;
+    for (const x of sample.connections) {
+        const a = x.s > 0 ? sample.light[x.s - 1].film : null, b = x.t > 1 ? sample.camera[x.t - 1].film : x.t === 1 ? null : null;
+        if (x.t === 1 && a) html += polyline([a, [((x.pixel % W) + 0.5), (Math.floor(x.pixel / W) + 0.5)]], "#ffffff", (x === c ? 0.8 : 0.3) * u, "1.5 1");
+        else if (a && b) html += polyline([a, b], "#ffffff", (x === c ? 0.8 : 0.3) * u, x === c ? "" : "1.5 1");
+    }
+    html += polyline(cam, "#4dabf7", 0.5 * u) + polyline(light, "#ffb000", 0.5 * u) + dots(cam, "#4dabf7", 0.9 * u, "camera") + dots(light, "#ffb000", 0.9 * u, "light");
+    svg.innerHTML = html;
+}
+function drawPathSide(sample, outline, c) {
+    const svg = $("path-side"), sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]], dot3 = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    const P = (p) => [dot3(sub(p, outline.eye), outline.forward), -dot3(sub(p, outline.eye), outline.up)];
+    const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+    const quads = outline.quads.map(([q, e1, e2, lamp]) => ({ lamp, corners: [q, add(q, e1), add(add(q, e1), e2), add(q, e2)].map(P) }));
+    const spheres = outline.spheres.map(([centre, r]) => ({ centre: P(centre), r }));
+    const all = [P(outline.eye), ...quads.flatMap((q) => q.corners), ...spheres.flatMap((s) => [[s.centre[0] - s.r, s.centre[1] - s.r], [s.centre[0] + s.r, s.centre[1] + s.r]]),
+                 ...sample.camera.map((v) => P(v.p)), ...sample.light.map((v) => P(v.p)), ...outline.points.map(P)];
+    const x0 = Math.min(...all.map((p) => p[0])), x1 = Math.max(...all.map((p) => p[0])), y0 = Math.min(...all.map((p) => p[1])), y1 = Math.max(...all.map((p) => p[1]));
+    const pad = 0.05 * Math.max(x1 - x0, y1 - y0), u = Math.max(x1 - x0, y1 - y0) / 100;
+    svg.setAttribute("viewBox", `${x0 - pad} ${y0 - pad} ${x1 - x0 + 2 * pad} ${y1 - y0 + 2 * pad}`);
+    let html = quads.map((q) => `<polygon fill="none" stroke="${q.lamp ? "#ffb000" : "#777"}" stroke-width="${0.4 * u}" points="${q.corners.map((p) => p.join(",")).join(" ")}"/>`).join("") +
+        spheres.map((s) => `<circle cx="${s.centre[0]}" cy="${s.centre[1]}" r="${s.r}" fill="none" stroke="#777" stroke-width="${0.4 * u}"/>`).join("") +
+        outline.points.map((p) => `<circle cx="${P(p)[0]}" cy="${P(p)[1]}" r="${1.2 * u}" fill="#ffb000"/>`).join("");
+    const cam = sample.camera.map((v) => P(v.p)), light = sample.light.map((v) => P(v.p));
+    for (const x of sample.connections) if (x.s > 0) html += polyline([P(sample.light[x.s - 1].p), P(sample.camera[x.t - 1].p)], "#ffffff", (x === c ? 0.9 : 0.3) * u, x === c ? "" : `${2 * u} ${u}`);
+    html += polyline(cam, "#4dabf7", 0.6 * u) + polyline(light, "#ffb000", 0.6 * u) + dots(cam, "#4dabf7", 1.1 * u, "camera") + dots(light, "#ffb000", 1.1 * u, "light");
+    svg.innerHTML = html;
 }
 
 // ---- drawing, at most once per display frame, each part only when its data changed
@@ -633,10 +889,68 @@ function openNotes(file, anchor) {
     $("notes-page").value = page.file;
     text.innerHTML = page.html;
     linkPages(text);
+    linkCode(text);
     addCommandButtons(text);
+    if (!$("code-view").hidden) closeCode();
     const target = anchor && text.querySelector(`[id="${CSS.escape(anchor)}"]`);
     if (target) target.scrollIntoView(); else text.scrollTop = 0, $("notes-view").scrollTop = 0;
     saveState();
+}
+// ---- the code view: bdpt.cpp (and two classroom headers) in the notes' column, highlighted at
+// build time (build_code.js); a function the notes cite, or a panel's method, opens it there.
+const METHOD_FUNCTIONS = { pt: "samplePT", nee: "sampleNEE", lt: "sampleLT", ir: "sampleIR", bdpt: "sampleBDPT", vcm: "sampleVCM",
+                           pssmlt: "sampleMLT", mmlt: "sampleMLT", mlt: "sampleMLT" };
+function openCode(name) {
+    const where = BDPT_CODE.functions[name];
+    if (!where) return false;
+    const [file, line, end] = where;
+    showCodeFile(file);
+    const text = $("code-text");
+    text.querySelectorAll(".line.target").forEach((l) => l.classList.remove("target"));
+    for (let n = line; n <= end; ++n) text.children[n - 1].classList.add("target");
+    $("code-where").textContent = `${name}(): ${file}, lines ${line}-${end}`;
+    $("notes-text").hidden = true;
+    $("code-view").hidden = false;
+    if (document.body.classList.contains("no-notes")) $("notes-toggle").click();
+    // the definition a few lines below the column's top, under its sticky bar
+    const view = $("notes-view"), bar = $("code-view").querySelector(".code-bar");
+    view.scrollTop += text.children[line - 1].getBoundingClientRect().top - view.getBoundingClientRect().top - bar.offsetHeight - 8;
+    state.codeFunction = name;
+    return true;
+}
+function showCodeFile(file) {
+    if (state.codeFile === file) return;
+    state.codeFile = file;
+    $("code-file").value = file;
+    $("code-text").innerHTML = BDPT_CODE.files[file].map((html, i) => `<span class="line" data-n="${i + 1}">${html}</span>`).join("\n");
+}
+function closeCode() {
+    $("code-view").hidden = true;
+    $("notes-text").hidden = false;
+    state.codeFunction = null;
+    const anchor = state.notesScroll || 0;
+    $("notes-view").scrollTop = anchor;
+}
+// `name()` in a page's text: a link to its definition, where the code view has it.
+function linkCode(root) {
+    for (const code of root.querySelectorAll("code")) {
+        const m = !code.closest("pre") && code.textContent.match(/^([A-Za-z_]\w*)\(\)$/);
+        if (!m || !BDPT_CODE.functions[m[1]]) continue;
+        const [file, line] = BDPT_CODE.functions[m[1]];
+        const a = document.createElement("a");
+        a.href = "#", a.className = "code-link", a.dataset.function = m[1], a.title = `${file}, line ${line}: open it beside the notes`;
+        code.replaceWith(a);
+        a.append(code);
+    }
+}
+
+// A notes figure at its own size (the notes column shows it shrunk, its labels unreadable).
+function showFigure(img) {
+    const view = $("figure-view");
+    view.querySelector("img").src = img.src;
+    view.querySelector("img").alt = img.alt;
+    view.hidden = false;
+    view.scrollTop = view.scrollLeft = 0;
 }
 // "page 7", "page 10M", "Appendix A" in the text: links to those pages.
 function linkPages(root) {
@@ -664,13 +978,16 @@ function splitWords(line) {
     line.replace(/"([^"]*)"|'([^']*)'|(\S+)/g, (_, a, b, c) => words.push(a ?? b ?? c));
     return words;
 }
-const FIGURE_OPTIONS = ["--out", "--title", "--ratio-panel", "--ref", "--strategies", "--log", "--live", "--strategy-length"];
+const FIGURE_OPTIONS = ["--out", "--title", "--ratio-panel", "--strategies", "--log", "--live", "--strategy-length"];
+// The references the page holds: scenes/refs/*.pfm and the one test reference the notes name.
+const PAGE_REFERENCES = /^(scenes\/refs\/[\w-]+|tests\/refs\/cornell-direct)\.pfm$/;
 const FLAGS = ["--overwrite", "--quiet", "--profile"];
 function parseCommand(line) {
     const words = splitWords(line.trim());
     if (words[0] !== "./bdpt") return { reason: "run it in a terminal, in the repository's folder" };
     if (words.includes("--ratio")) return { reason: "--ratio compares two files: run it in a terminal after the renders" };
-    const settings = { scene: null, entries: null, method: null, spp: 0, seconds: 0, resolution: "0x0", seed: 1, shared: [] };
+    if (words.some((w) => /^[A-Z]{2,}(\.\w+)?$/.test(w))) return { reason: "a template: put your own values for its capitals and run it in a terminal" };
+    const settings = { scene: null, entries: null, method: null, spp: 0, seconds: 0, resolution: "0x0", seed: 1, shared: [], reference: "" };
     for (let i = 1; i < words.length; ++i) {
         const w = words[i], v = words[i + 1];
         if (w === "--side-by-side") settings.entries = v.split(",").map((e) => e.trim()), ++i;
@@ -679,6 +996,10 @@ function parseCommand(line) {
         else if (w === "--time" || w === "--wall-time") settings.seconds = Number(v), ++i;
         else if (w === "--res") settings.resolution = v, ++i;
         else if (w === "--seed") settings.seed = Number(v), ++i;
+        else if (w === "--ref") {
+            if (!PAGE_REFERENCES.test(v || "")) return { reason: `its reference ${v} is a file you render first: run it in a terminal (or, in the page, edit the scene and render its reference there)` };
+            settings.reference = v, ++i;
+        }
         else if (FIGURE_OPTIONS.includes(w)) ++i;
         else if (FLAGS.includes(w)) { if (w === "--profile") return { reason: "--profile prints a terminal's table: run it in a terminal" }; }
         else if (!w.startsWith("--") && w.endsWith(".scene") && !settings.scene) settings.scene = w;
@@ -700,6 +1021,7 @@ function parseCommand(line) {
 }
 function applySettings(s) {
     selectScene(s.scene);
+    setCommandReference(s.reference || "");
     setResolution(s.resolution);
     $("spp").value = s.spp;
     $("seconds").value = s.seconds || (s.spp ? 0 : 10);
@@ -787,7 +1109,9 @@ function bindControls() {
     $("stop").onclick = stop;
     $("scene").onchange = () => selectScene(sceneName());
     $("scene-reset").onclick = () => { selectScene(sceneName()); };
-    $("scene-text").addEventListener("input", () => { sceneLines(); describeEntries(); saveState(); });
+    $("scene-text").addEventListener("input", () => { sceneLines(); describeEntries(); referenceState(); saveState(); });
+    $("render-reference").onclick = () => renderReference();
+    $("command-reference-clear").onclick = () => setCommandReference("");
     $("scene-text").addEventListener("scroll", () => ($("scene-lines").scrollTop = $("scene-text").scrollTop));
     for (const id of ["resolution", "seconds", "spp", "seed"]) $(id).addEventListener("change", saveState);
     $("exposure").oninput = () => { state.pyramidDirty = true; drawAll(); };
@@ -806,7 +1130,7 @@ function bindControls() {
     $("preset").onchange = () => {
         const p = PRESETS[Number($("preset").value)];
         if (!p) return;
-        applySettings({ scene: scenePath(p.scene), entries: p.entries, spp: 0, seconds: p.seconds || 10, seed: 1, resolution: p.resolution || "64x64" });
+        applySettings({ scene: scenePath(p.scene), entries: p.entries, spp: p.spp || 0, seconds: p.spp ? 0 : p.seconds || 10, seed: 1, resolution: p.resolution || "64x64" });
         if (p.page) openNotes(p.page);
         $("preset").value = "";
     };
@@ -816,7 +1140,15 @@ function bindControls() {
     $("notes-text").addEventListener("click", (e) => {
         const a = e.target.closest("a[data-page]");
         if (a) { e.preventDefault(); openNotes(a.dataset.page, a.dataset.anchor); }
+        const c = e.target.closest("a.code-link");
+        if (c) { e.preventDefault(); state.notesScroll = $("notes-view").scrollTop; openCode(c.dataset.function); }
+        if (e.target.matches("img")) showFigure(e.target);
     });
+    $("figure-view").onclick = () => ($("figure-view").hidden = true);
+    $("code-back").onclick = closeCode;
+    $("tap-hint").onclick = () => { $("tap-hint").hidden = true; $("bars-figure").scrollIntoView(); };
+    for (const file of Object.keys(BDPT_CODE.files)) $("code-file").append(new Option(file, file));
+    $("code-file").onchange = () => { showCodeFile($("code-file").value); $("code-where").textContent = ""; $("notes-view").scrollTop = 0; };
     $("notes-toggle").onclick = () => {
         const hidden = document.body.classList.toggle("no-notes");
         $("notes-toggle").textContent = hidden ? "Show the notes" : "Hide the notes";
@@ -830,7 +1162,7 @@ function bindControls() {
         if (e.target.matches("input:not([type=range]):not([type=checkbox]), textarea, select")) return;  // typing
         const ex = $("exposure");
         if (e.key === " ") { e.preventDefault(); state.running ? stop() : start(); }
-        else if (e.key === "Escape") stop();
+        else if (e.key === "Escape") { if (!$("figure-view").hidden) $("figure-view").hidden = true; else stop(); }
         else if (e.key === "+" || e.key === "=") { ex.value = Number(ex.value) + 0.5; state.pyramidDirty = true; drawAll(); }
         else if (e.key === "-") { ex.value = Number(ex.value) - 0.5; state.pyramidDirty = true; drawAll(); }
         else if (e.key === "w" || e.key === "W") { $("weighted").checked = !$("weighted").checked; drawAll(); }
@@ -845,7 +1177,9 @@ function bindControls() {
 window.bdptPage = {
     ready: () => state.ready === MAX_PANELS,
     selectScene,
-    setSceneText: (text) => { $("scene-text").value = text; sceneLines(); },
+    setSceneText: (text) => { $("scene-text").value = text; sceneLines(); describeEntries(); referenceState(); },
+    renderReference,   // ({seconds, spp}): resolves when the page's own reference is done
+    referenceState: () => $("reference-state").textContent,
     setEntries: (list) => { entryInputs().forEach((e, i) => { e.value = list[i] || ""; }); describeEntries(); },
     setOptions: (o) => {
         if (o.resolution) setResolution(o.resolution);
@@ -855,12 +1189,13 @@ window.bdptPage = {
     run: () => start(),
     stop,
     running: () => state.running,
+    runs: () => state.runCount || 0,  // runs started: a test waits for the next one
     longestFrameGap: () => state.longestFrameGap,  // ms between two drawn frames during the last run
     sceneError: () => ($("scene-error").hidden ? "" : $("scene-error").textContent),
     panels: () => state.panels.map((p) => ({ entry: p.entry, passes: p.passes, seconds: p.seconds, mean: p.mean, rmse: p.rmse, rmseWithoutLamp: p.rmseWithoutLamp, bias: p.bias,
                                              error: p.error, done: p.done, nonFinite: p.nonFinite, firstFrameMs: p.firstFrameMs, firstFramePasses: p.firstFramePasses, curve: p.curve,
                                              strategies: p.strategies ? p.strategies.length : 0, width: p.width, height: p.height,
-                                             comparedWidth: p.comparedWidth, notes: p.notes, what: p.el.querySelector(".what").textContent,
+                                             comparedWidth: p.comparedWidth, commonWidth: p.commonWidth, referenceWidth: p.referenceWidth, notes: p.notes, what: p.el.querySelector(".what").textContent,
                                              limitSpp: p.spp, limitSeconds: p.limitSeconds,
                                              stats: p.el.querySelector(".stats").textContent })),
     // The canvas as drawn: RGBA bytes of panel i.
@@ -887,6 +1222,23 @@ window.bdptPage = {
         return [...$("bars").querySelectorAll("rect")].map((b) => ({ strategy: b.dataset.strategy, kind: b.dataset.kind, value: Number(b.dataset.value) }));
     },
     openNotes,
+    // The notes' `name()` links on the open page, and what the code view shows after a click on one.
+    codeLinks: () => [...document.querySelectorAll("#notes-text a.code-link")].map((a) => a.dataset.function),
+    citedFunctions: () => [...document.querySelectorAll("#notes-text code")].filter((c) => !c.closest("pre") && /^[A-Za-z_]\w*\(\)$/.test(c.textContent)).map((c) => c.textContent.slice(0, -2)),
+    clickCodeLink: (name) => {
+        const a = document.querySelector(`#notes-text a.code-link[data-function="${name}"]`);
+        if (!a) return null;
+        a.click();
+        return bdptPage.codeShown();
+    },
+    clickPanelMethod: (i) => { state.panels[i].el.querySelector("h2 a.code-link").click(); return bdptPage.codeShown(); },
+    codeShown: () => {
+        if ($("code-view").hidden) return null;
+        const view = $("notes-view").getBoundingClientRect(), lines = [...$("code-text").querySelectorAll(".line.target")];
+        const first = lines[0], r = first && first.getBoundingClientRect();
+        return { where: $("code-where").textContent, first: first ? first.textContent : "", lines: lines.length, firstLine: first ? Number(first.dataset.n) : 0,
+                 inView: !!r && r.top >= view.top && r.bottom <= view.bottom, beside: view.right <= $("live").getBoundingClientRect().left + 1 };
+    },
     notesButtons: () => [...document.querySelectorAll("#notes-text .run-command")].map((b) => ({ command: b.dataset.command, runs: b.tagName === "BUTTON", reason: b.dataset.reason || "" })),
     clickNotesButton: (command) => {
         const b = [...document.querySelectorAll("#notes-text button.run-command")].find((x) => x.dataset.command === command);
@@ -894,6 +1246,20 @@ window.bdptPage = {
         b.click();
         return true;
     },
+    // The path view as drawn: the pixel, each connection's weights, the chosen path's vertices and
+    // strategies, and the sums of its columns of weights as the table shows them.
+    pathView: () => {
+        const v = state.path;
+        if (!v) return null;
+        const c = v.sample.connections[v.chosen];
+        return { entry: v.panel.entry, x: v.x, y: v.y, pass: v.sample.pass, width: v.panel.width, height: v.panel.height,
+                 connections: v.sample.connections.map((x) => ({ s: x.s, t: x.t, w: x.w, strategies: x.strategies.length })),
+                 chosen: { s: c.s, t: c.t, w: c.w, vertices: pathVertices(v.sample, c).map((x) => ({ p: x.p, kind: x.kind })), strategies: c.strategies },
+                 sums: [...document.querySelectorAll("#path-tables tr.sums td[data-sum]")].map((td) => Number(td.dataset.sum)),
+                 drawn: { camera: $("path-image").querySelectorAll("circle.camera").length, light: $("path-image").querySelectorAll("circle.light").length,
+                          sideCamera: $("path-side").querySelectorAll("circle.camera").length, lines: $("path-image").querySelectorAll("polyline").length } };
+    },
+    choosePath: (i) => { state.path.chosen = i; drawPath(); return bdptPage.pathView(); },
     // A worker killed without a word, as the system kills one out of memory (the test's own hook).
     killWorker: (slot) => state.workers[slot].terminate(),
     setSilenceLimit: (ms) => { state.silenceLimitMs = ms; },

@@ -7,21 +7,28 @@
 // overwrites.
 #include "../lecture.h"
 #include "../metrics.h"  // readPFM, compareToReference: the error as the charts measure it
+#include <dirent.h>
 #include <emscripten/emscripten.h>
+#include <numeric>
 
 // One panel: its scene (the Rendering refers to it), its options, its reference if there is one.
 struct WebPanel {
     Scene scene;
     CommandLine cl;
-    Image reference;                  // scenes/refs/NAME.pfm, of any size
+    Image reference;                  // the one chosen by bdpt_start (see chooseReference)
+    std::string referenceName;        // where it came from, as the page names it
     std::unique_ptr<Rendering> rendering;
     int rowsDone = 0;                 // of the pass in flight (0: none in flight)
     std::vector<float> image;         // the mean so far (or the first pass's rows), RGB, rows from the top
     std::vector<float> strategy;      // the strategy image last asked for, likewise
     ErrorMetrics error;
-    int comparedWidth = 0;            // the size at which the image met its reference (0: none)
+    int comparedWidth = 0;            // the size at which the image met its reference (0: none yet)
+    int commonWidth = 0;              // the size at which it will (0: never)
+    Scene maskScene;                  // the scene's camera at the compared size: a point light's pixel (lampPixels)
+    VcmTotals vcm;                    // vcm's light vertices and memory over the passes, as ./bdpt counts them
 };
 static WebPanel gPanel;
+static Image gGivenReference;         // a reference the page hands over (bdpt_reference_buffer)
 static std::string gText;             // what a string-returning call returns
 
 static const char* returned(const std::string& text) {
@@ -29,10 +36,63 @@ static const char* returned(const std::string& text) {
     return gText.c_str();
 }
 
-// "scenes/cornell.scene" -> "/scenes/refs/cornell.pfm" (the module holds scenes/ at its root).
-static std::string referencePath(const std::string& sceneName) {
-    std::string stem = sceneName.substr(sceneName.find_last_of('/') + 1);
-    return "/scenes/refs/" + replaceExtension(stem, ".pfm");
+// Two images meet at a common size: each averaged over blocks of f x f pixels (its own f), down to
+// the largest size that both reach, of the same aspect, at least 16 pixels wide (coarser, the
+// error would measure blocks, not pixels). The pixel filter is a box, so a block's mean estimates
+// the pixel of the smaller image that covers it. Returns the common width, or 0.
+static int commonWidth(int w1, int h1, int w2, int h2) {
+    if (long(w1) * h2 != long(w2) * h1) return 0;
+    int g = std::gcd(w1, w2);
+    if (h1 % (w1 / g) || h2 % (w2 / g)) return 0;
+    return g >= 16 ? g : 0;
+}
+
+// The image averaged over f x f blocks.
+static Image boxAverage(const Image& img, int f) {
+    if (f == 1) return img;
+    Image out(img.width / f, img.height / f);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            Vec3 s(0);
+            for (int v = 0; v < f; ++v)
+                for (int u = 0; u < f; ++u) s = s + img.at(f * x + u, f * y + v);
+            out.pixels[size_t(y) * out.width + x] = s * (1.0f / (f * f));
+        }
+    return out;
+}
+
+// The reference for a panel of width x height: the one asked for ("none", "given": the page's
+// own, or a path in the module: a notes command's --ref), or else, of the scene's committed
+// reference (scenes/refs/NAME.pfm) and the page's own for the sizes the notes use
+// (/web-refs/NAME-WxH.pfm, classroom/web/refs/), the one that meets the image at the largest size.
+static void chooseReference(const std::string& sceneName, const std::string& asked, int width, int height) {
+    gPanel.reference = Image();
+    gPanel.referenceName.clear();
+    Image img;
+    if (asked == "none") return;
+    if (asked == "given") {
+        gPanel.reference = gGivenReference, gPanel.referenceName = "given";
+        return;
+    }
+    if (!asked.empty()) {
+        if (!readPFM(asked, img)) ArgReader::fail("the reference " + asked.substr(1) + " is not in the page");
+        gPanel.reference = img, gPanel.referenceName = asked.substr(1);
+        return;
+    }
+    const std::string stem = replaceExtension(sceneName.substr(sceneName.find_last_of('/') + 1), "");
+    std::vector<std::string> candidates = {"/scenes/refs/" + stem + ".pfm"};
+    if (DIR* dir = opendir("/web-refs")) {
+        while (dirent* e = readdir(dir))
+            if (std::string name = e->d_name; name.rfind(stem + "-", 0) == 0 && hasExtension(name, ".pfm")) candidates.push_back("/web-refs/" + name);
+        closedir(dir);
+    }
+    int best = 0;
+    for (const std::string& path : candidates)
+        if (readPFM(path, img) && commonWidth(width, height, img.width, img.height) > best) {
+            best = commonWidth(width, height, img.width, img.height);
+            gPanel.reference = img, gPanel.referenceName = path.substr(1);
+        }
+    if (!best && readPFM(candidates[0], img)) gPanel.reference = img, gPanel.referenceName = candidates[0].substr(1);  // says why it cannot compare
 }
 
 // What the page cannot do with an entry's option: a page writes no files and a worker is one thread.
@@ -65,39 +125,14 @@ static CommandLine entryCommandLine(const std::string& sceneName, const std::str
     return cl;
 }
 
-// The image averaged over f x f blocks: the pixel filter is a box, so a block's mean estimates the
-// pixel of the image f times smaller that covers it.
-static Image boxAverage(const Image& img, int f) {
-    Image out(img.width / f, img.height / f);
-    for (int y = 0; y < out.height; ++y)
-        for (int x = 0; x < out.width; ++x) {
-            Vec3 s(0);
-            for (int v = 0; v < f; ++v)
-                for (int u = 0; u < f; ++u) s = s + img.at(f * x + u, f * y + v);
-            out.pixels[size_t(y) * out.width + x] = s * (1.0f / (f * f));
-        }
-    return out;
-}
-
-// The factor f (a power of two) with a * f = b, or 0.
-static int powerOfTwoFactor(int a, int b) {
-    for (int f = 1; f <= 64; f *= 2)
-        if (a * f == b) return f;
-    return 0;
-}
-
-// The error against the reference, at the smaller of the two sizes: the larger one averaged down.
+// The error against the reference, at the size where the two meet (commonWidth).
 static void compareWithReference(const Image& mean) {
     const Image& ref = gPanel.reference;
     gPanel.comparedWidth = 0;
-    if (ref.width == 0) return;
-    if (int f = powerOfTwoFactor(ref.width, mean.width); f && ref.height * f == mean.height) {
-        gPanel.error = compareToReference(f == 1 ? mean : boxAverage(mean, f), ref);
-        gPanel.comparedWidth = ref.width;
-    } else if (int g = powerOfTwoFactor(mean.width, ref.width); g && mean.height * g == ref.height) {
-        gPanel.error = compareToReference(mean, boxAverage(ref, g));
-        gPanel.comparedWidth = mean.width;
-    }
+    int g = ref.width ? commonWidth(mean.width, mean.height, ref.width, ref.height) : 0;
+    if (!g) return;
+    gPanel.error = compareToReference(boxAverage(mean, mean.width / g), boxAverage(ref, ref.width / g), &gPanel.maskScene);
+    gPanel.comparedWidth = g;
 }
 
 extern "C" {
@@ -117,29 +152,41 @@ EMSCRIPTEN_KEEPALIVE const char* bdpt_help() { return returned(usage(kOptions));
 
 // Prepares a panel: scene text and name, the entry's method and options, the page's image size
 // (0: the scene's), samples per pixel and seconds (0: none) and seed, which the entry's own
-// options override, and the longest path with per-strategy images (bdpt and vcm; 0: none).
+// options override, the longest path with per-strategy images (bdpt and vcm; 0: none), and the
+// reference to measure against ("": the scene's; "none"; "given"; a path: chooseReference).
 // Returns "" or the message that says what is wrong; nothing is rendered yet.
 EMSCRIPTEN_KEEPALIVE const char* bdpt_start(const char* sceneText, const char* sceneName, const char* entry, int width, int height,
-                                            int spp, double seconds, int seed, int strategyLength) {
+                                            int spp, double seconds, int seed, int strategyLength, const char* reference) {
     gPanel.rendering.reset();
     gPanel.rowsDone = 0;
     gPanel.comparedWidth = 0;
+    gPanel.vcm = VcmTotals();
     try {
         gPanel.cl = entryCommandLine(sceneName, entry, width, height, spp, seconds, seed);
         gPanel.scene = parseScene(sceneText, sceneName);
         applyToScene(gPanel.cl, gPanel.scene);
+        const Camera& cam = gPanel.scene.camera;
+        chooseReference(sceneName, reference, cam.width, cam.height);
     } catch (const InputError& e) {
         return returned(e.what());
     }
     RenderOptions& opt = gPanel.cl.opt;
     opt.threads = 1;  // a worker is one thread; the page runs one worker per panel
     opt.strategyMaxLength = opt.method == Method::BDPT || opt.method == Method::VCM ? strategyLength : 0;
-    Image ref;
-    gPanel.reference = readPFM(referencePath(sceneName), ref) ? ref : Image();
     gPanel.rendering = std::make_unique<Rendering>(gPanel.scene, opt);
     const Camera& cam = gPanel.scene.camera;
+    gPanel.maskScene = gPanel.scene;
+    gPanel.commonWidth = gPanel.reference.width ? commonWidth(cam.width, cam.height, gPanel.reference.width, gPanel.reference.height) : 0;
+    if (gPanel.commonWidth) setResolution(gPanel.maskScene.camera, gPanel.commonWidth, cam.height * gPanel.commonWidth / cam.width);
     gPanel.image.assign(3 * size_t(cam.width) * cam.height, 0.0f);
     return returned("");
+}
+
+// Room for a reference the page rendered itself (an edited scene's): width x height RGB floats,
+// rows from the top, which the page fills before a bdpt_start(..., "given").
+EMSCRIPTEN_KEEPALIVE float* bdpt_reference_buffer(int width, int height) {
+    gGivenReference = Image(width, height);
+    return &gGivenReference.pixels[0].x;
 }
 
 // One more row of the pass in flight (a pass begins with its light paths, VPLs or chains, and
@@ -153,6 +200,7 @@ EMSCRIPTEN_KEEPALIVE int bdpt_row() {
         if (gPanel.rowsDone == r.scene.camera.height) {
             r.endPass();
             gPanel.rowsDone = 0;
+            if (r.opt.method == Method::VCM) gPanel.vcm.add(r.storage.vcm);
         }
     } catch (const std::bad_alloc&) {
         return -1;
@@ -186,8 +234,10 @@ EMSCRIPTEN_KEEPALIVE int bdpt_threads_given() { return gPanel.cl.given.count("--
 EMSCRIPTEN_KEEPALIVE float bdpt_exposure() { return gPanel.cl.exposure; }
 EMSCRIPTEN_KEEPALIVE long long bdpt_non_finite() { return gPanel.rendering->result.nonFinite; }
 EMSCRIPTEN_KEEPALIVE int bdpt_reference_width() { return gPanel.reference.width; }
+EMSCRIPTEN_KEEPALIVE const char* bdpt_reference_name() { return returned(gPanel.referenceName); }
 EMSCRIPTEN_KEEPALIVE int bdpt_reference_height() { return gPanel.reference.height; }
 EMSCRIPTEN_KEEPALIVE int bdpt_compared_width() { return gPanel.comparedWidth; }
+EMSCRIPTEN_KEEPALIVE int bdpt_common_width() { return gPanel.commonWidth; }
 // The image's mean over pixels and channels, as ./bdpt's summary line prints it.
 EMSCRIPTEN_KEEPALIVE double bdpt_mean() {
     double s = 0;
@@ -198,6 +248,23 @@ EMSCRIPTEN_KEEPALIVE double bdpt_rmse() { return gPanel.error.rmse; }
 EMSCRIPTEN_KEEPALIVE double bdpt_rmse_without_lamp() { return gPanel.error.rmseWithoutLamp; }
 // The image mean's relative difference from the reference's, the lamp's pixels left out (./bdpt's "bias").
 EMSCRIPTEN_KEEPALIVE double bdpt_bias() { return gPanel.error.bias; }
+
+// What ./bdpt's summary says beyond the image's mean, as it prints it: the rays per sample, vcm's
+// radius, light vertices and memory, the chains' b and acceptance (per mutation for mlt), the
+// energy ir's clamp removed; and the relMSE of its line against a reference.
+EMSCRIPTEN_KEEPALIVE const char* bdpt_summary() {
+    const Rendering& r = *gPanel.rendering;
+    if (r.result.passes == 0) return returned("");
+    RenderResult counted;
+    counted.passes = r.result.passes;
+    counted.rays = r.result.rays;
+    counted.image.width = r.scene.camera.width, counted.image.height = r.scene.camera.height;
+    std::string s = raysPerSample(counted) + "\n";
+    if (r.opt.method == Method::VCM) s += vcmSummary(r.scene, r.opt, r.result.passes, gPanel.vcm);
+    s += methodSummary(r.opt, r.storage.metropolis, r.result.clampRemoved());
+    return returned(s);
+}
+EMSCRIPTEN_KEEPALIVE double bdpt_relmse() { return gPanel.error.relMse; }
 
 // The strategies recorded, "k s index;" each (s = k + 1: vcm's merges of length k), in the order
 // of the slides' pyramid; "" when the panel records none.
@@ -215,6 +282,147 @@ EMSCRIPTEN_KEEPALIVE float* bdpt_strategy_image(int index, int weighted) {
     gPanel.strategy.resize(sum.size());
     for (size_t i = 0; i < sum.size(); ++i) gPanel.strategy[i] = float(sum[i] / n);
     return gPanel.strategy.data();
+}
+
+}  // extern "C"
+
+// ---- one sample's paths, drawn (the page's path view): page 7's worked path, live.
+
+// The terms of one path's MIS walk (misWalk), listed instead of summed: r_i = p_i / p_{s,t}.
+struct WalkTerms {
+    struct Term { double r; int s; bool merge; };
+    std::vector<Term> terms;
+    void add(double r, int s = 0, bool merge = false) { terms.push_back({r, s, merge}); }
+};
+
+static void appendVec(std::ostringstream& o, Vec3 v) { o << "[" << v.x << "," << v.y << "," << v.z << "]"; }
+
+// A vertex as the page draws it: where it is, where it appears on the film (null: behind the
+// camera), what it is, and its densities from its own side and from the other.
+static void appendVertex(std::ostringstream& o, const Scene& scene, const PathVertex& v) {
+    const Camera& cam = scene.camera;
+    Vec3 d = v.sp.p - cam.eye;
+    float z = dot(d, cam.forward);
+    o << "{\"p\":";
+    appendVec(o, v.sp.p);
+    if (v.type == PathVertex::Camera || z <= 0) o << ",\"film\":null";
+    else o << ",\"film\":[" << (dot(d, cam.right) / (z * cam.tanHalfFov * cam.aspect) + 1) * 0.5f * cam.width << ","
+           << (1 - dot(d, cam.up) / (z * cam.tanHalfFov)) * 0.5f * cam.height << "]";
+    const char* kind = v.type == PathVertex::Camera ? "pinhole" : v.type == PathVertex::Light ? (v.deltaPosition ? "point light" : "lamp")
+                     : v.delta ? "specular" : "surface";
+    o << ",\"kind\":\"" << kind << "\",\"pdfFwd\":" << v.pdfFwd << ",\"pdfRev\":" << v.pdfRev << "}";
+}
+
+// Each heuristic's weights of the strategies a walk listed (the strategy itself first, r = 1), as
+// MisSum weighs one of them: balance r / sum r, power r^2 / sum r^2, uniform 1 / count, max 1 / ties.
+static std::vector<float> weightsOf(const std::vector<WalkTerms::Term>& terms, Heuristic h) {
+    std::vector<float> w;
+    for (const WalkTerms::Term& self : terms) {
+        MisSum m{h};
+        for (const WalkTerms::Term& other : terms) m.add(other.r / self.r);
+        w.push_back(self.r > 0 ? m.weight() : 0.0f);
+    }
+    return w;
+}
+
+static const Heuristic kHeuristics[4] = {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform};
+
+// Connection (s,t) of the two subpaths, as JSON: its contribution C_{s,t}, the renderer's weight
+// w_{s,t} in each heuristic (misWeight), and the path's table: every strategy able to make it,
+// its density p_i = p_{s,t} r_i and its weights.
+static bool appendConnection(std::ostringstream& o, const Scene& scene, Subpath light, int s, Subpath camera, int t, double mergeEta) {
+    Connection c;
+    int pixel = -1;
+    Vec3 C = connectStrategy(scene, light, s, camera, t, c, pixel);
+    if (isBlack(C) || (t == 1 && pixel < 0)) return false;
+    double p = 1;  // p_{s,t}: the densities of the vertices as their subpaths sampled them
+    for (int i = 0; i < s; ++i) p *= light[i].pdfFwd;
+    for (int i = 0; i < t; ++i) p *= camera[i].pdfFwd;
+    WalkTerms walk;
+    walk.add(1, s);
+    misWalk(light, s, camera, t, mergeEta, connectionJunction(scene, light, s, camera, t, c), 1, walk);
+    o << "{\"s\":" << s << ",\"t\":" << t << ",\"C\":" << average(C) << ",\"density\":" << p << ",\"pixel\":" << pixel << ",\"w\":[";
+    for (int h = 0; h < 4; ++h) o << (h ? "," : "") << misWeight(scene, light, s, camera, t, kHeuristics[h], c, mergeEta);
+    o << "],\"strategies\":[";
+    std::vector<float> w[4];
+    for (int h = 0; h < 4; ++h) {
+        w[h] = weightsOf(walk.terms, kHeuristics[h]);
+        if (s + t == 2)  // the light seen directly is left to s = 0, whatever the densities (misWeight)
+            for (size_t i = 0; i < walk.terms.size(); ++i) w[h][i] = walk.terms[i].s == 0 ? 1.0f : 0.0f;
+    }
+    for (size_t i = 0; i < walk.terms.size(); ++i) {
+        const WalkTerms::Term& term = walk.terms[i];
+        o << (i ? "," : "") << "{\"s\":" << term.s << ",\"merge\":" << (term.merge ? "true" : "false") << ",\"density\":" << p * term.r << ",\"w\":["
+          << w[0][i] << "," << w[1][i] << "," << w[2][i] << "," << w[3][i] << "]}";
+    }
+    o << "]}";
+    return true;
+}
+
+extern "C" {
+
+// Pixel (x, y)'s sample of the last pass done, made again from its own random streams: the
+// camera subpath, the light subpath (bdpt's and vcm's are the same), every connection that
+// carries light (appendConnection). vcm's weights count its merges (the pass's mergeEta); the
+// merges themselves are not drawn. "" for other methods.
+EMSCRIPTEN_KEEPALIVE const char* bdpt_path_sample(int x, int y) {
+    const Rendering& r = *gPanel.rendering;
+    const Scene& scene = r.scene;
+    const SampleOptions& opt = r.opt;
+    if ((opt.method != Method::BDPT && opt.method != Method::VCM) || r.result.passes == 0) return returned("");
+    const int pass = r.result.passes - 1, ownPixel = y * scene.camera.width + x;
+    const double mergeEta = opt.method == Method::VCM ? r.storage.vcm.mergeEta : 0;
+    Rng cameraRng = sampleRng(opt, kCameraStream, uint64_t(ownPixel), uint64_t(pass));
+    FilmPoint f = jitteredFilmPoint(x, y, cameraRng);
+    std::vector<PathVertex> camera, light;
+    cameraSubpath(scene, opt, f.x, f.y, cameraRng, camera);
+    Rng lightRng = lightPathRng(opt, ownPixel, pass);
+    lightSubpath(scene, opt, lightRng, light);
+    std::ostringstream o;
+    o.precision(7);
+    o << "{\"pass\":" << pass << ",\"film\":[" << f.x << "," << f.y << "],\"mergeEta\":" << mergeEta << ",\"camera\":[";
+    for (size_t i = 0; i < camera.size(); ++i) o << (i ? "," : ""), appendVertex(o, scene, camera[i]);
+    o << "],\"light\":[";
+    for (size_t i = 0; i < light.size(); ++i) o << (i ? "," : ""), appendVertex(o, scene, light[i]);
+    o << "],\"connections\":[";
+    bool first = true;
+    for (int t = 1; t <= int(camera.size()); ++t)
+        for (int s = 0; s <= int(light.size()); ++s) {
+            int bounces = s + t - 2;
+            if (bounces < opt.minDepth || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
+            std::ostringstream one;
+            one.precision(7);
+            if (appendConnection(one, scene, light, s, camera, t, mergeEta)) o << (first ? "" : ",") << one.str(), first = false;
+        }
+    o << "]}";
+    return returned(o.str());
+}
+
+// The scene's shapes for the path view's side view: quads (corner, edges), spheres (centre,
+// radius), point lights, and the camera's frame.
+EMSCRIPTEN_KEEPALIVE const char* bdpt_scene_outline() {
+    const Scene& scene = gPanel.rendering->scene;
+    std::ostringstream o;
+    o << "{\"quads\":[";
+    bool first = true;
+    for (const Shape& sh : scene.shapes)
+        if (sh.type == Shape::Quad) {
+            o << (first ? "" : ",") << "[", appendVec(o, sh.p), o << ",", appendVec(o, sh.u), o << ",", appendVec(o, sh.v),
+                o << "," << (isBlack(sh.emission) ? "false" : "true") << "]";
+            first = false;
+        }
+    o << "],\"spheres\":[";
+    first = true;
+    for (const Shape& sh : scene.shapes)
+        if (sh.type == Shape::Sphere) o << (first ? "" : ",") << "[", appendVec(o, sh.p), o << "," << sh.radius << "]", first = false;
+    o << "],\"points\":[";
+    first = true;
+    for (const Light& l : scene.lights)
+        if (l.type == Light::Point) o << (first ? "" : ","), appendVec(o, l.position), first = false;
+    const Camera& cam = scene.camera;
+    o << "],\"eye\":", appendVec(o, cam.eye), o << ",\"forward\":", appendVec(o, cam.forward), o << ",\"up\":", appendVec(o, cam.up),
+        o << ",\"right\":", appendVec(o, cam.right), o << "}";
+    return returned(o.str());
 }
 
 }  // extern "C"

@@ -30,6 +30,13 @@ function renderFormulas(text, formulas) {
     }).join("");
 }
 
+// "### Answers (for the instructor)" and what follows it, up to the next heading of its level or
+// above: folded (<details>), so that a student reads the exercise before its answer.
+function foldAnswers(html) {
+    return html.replace(/<h3[^>]*>(Answers? \(for the instructor\))<\/h3>([\s\S]*?)(?=<h[123][ >]|$)/g,
+        (_, title, body) => `<details class="answers"><summary>${title}</summary>${body}</details>\n`);
+}
+
 const figures = new Set();
 function renderPage(file) {
     const text = fs.readFileSync(path.join(notes, file), "utf8"), formulas = [];
@@ -40,7 +47,9 @@ function renderPage(file) {
     html = html.replace(/src="figures\/([^"]+)"/g, (_, f) => (figures.add(f), `src="notes/figures/${f}"`));
     html = html.replace(/href="([\w-]+)\.md(#[\w-]*)?"/g, (_, page, anchor) => `href="#notes=${page}" data-page="${page}"${anchor ? ` data-anchor="${anchor.slice(1)}"` : ""}`);
     html = html.replace(/<a href="\.\.\/([^"]+)">/g, (_, f) => `<a class="repository" title="in the repository: ${f}">`);
-    const title = (text.match(/^# (.*)$/m) || [, file])[1];
+    html = foldAnswers(html);
+    // The title for the contents menu, whose options hold text: a formula as plain letters.
+    const title = (text.match(/^# (.*)$/m) || [, file])[1].replace(/\$([^$]*)\$/g, (_, tex) => tex.replace(/\\pi\b/g, "π").replace(/\\[a-z]+/g, "").replace(/[{}]/g, ""));
     return { file: file.replace(/\.md$/, ""), title, html };
 }
 

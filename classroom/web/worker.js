@@ -12,7 +12,13 @@ createBdpt().then((module) => {
     const fn = (name, ret, args) => module.cwrap(name, ret, args);
     api = {
         module,
-        start: fn("bdpt_start", "string", ["string", "string", "string", "number", "number", "number", "number", "number", "number"]),
+        start: fn("bdpt_start", "string", ["string", "string", "string", "number", "number", "number", "number", "number", "number", "string"]),
+        referenceBuffer: fn("bdpt_reference_buffer", "number", ["number", "number"]),
+        referenceName: fn("bdpt_reference_name", "string", []),
+        summary: fn("bdpt_summary", "string", []),
+        relMse: fn("bdpt_relmse", "number", []),
+        pathSample: fn("bdpt_path_sample", "string", ["number", "number"]),
+        sceneOutline: fn("bdpt_scene_outline", "string", []),
         row: fn("bdpt_row", "number", []),
         rowsDone: fn("bdpt_rows_done", "number", []),
         snapshot: fn("bdpt_snapshot", null, []),
@@ -27,6 +33,7 @@ createBdpt().then((module) => {
         referenceWidth: fn("bdpt_reference_width", "number", []),
         referenceHeight: fn("bdpt_reference_height", "number", []),
         comparedWidth: fn("bdpt_compared_width", "number", []),
+        commonWidth: fn("bdpt_common_width", "number", []),
         mean: fn("bdpt_mean", "number", []),
         rmse: fn("bdpt_rmse", "number", []),
         rmseWithoutLamp: fn("bdpt_rmse_without_lamp", "number", []),
@@ -61,6 +68,7 @@ function frame(final) {
         type: final ? "done" : "frame", id: job.id, width: w, height: h, passes: job.passes, rowsDone: api.rowsDone(), seconds: job.seconds,
         image: floats(api.image(), n), mean: api.mean(), nonFinite: api.nonFinite(),
         rmse: compared ? api.rmse() : null, rmseWithoutLamp: compared ? api.rmseWithoutLamp() : null, bias: compared ? api.bias() : null, comparedWidth: api.comparedWidth(),
+        relMse: compared ? api.relMse() : null, summary: api.summary(),
         outOfMemory: job.outOfMemory,
     };
     // The strategies change a little with every pass: sent once a second (and with a new pass at first).
@@ -80,7 +88,7 @@ function frame(final) {
 const channel = new MessageChannel();
 channel.port1.onmessage = slice;
 function slice() {
-    if (!job || job.stopped) return;
+    if (!job || job.stopped || job.paused) return;
     const t0 = performance.now();
     do {
         const passes = api.row();
@@ -112,14 +120,27 @@ onmessage = (event) => {
     if (m.type === "check") {
         postMessage({ type: "checked", id: m.id, error: api.checkScene(m.sceneText, m.sceneName) });
     } else if (m.type === "start") {
-        const error = api.start(m.sceneText, m.sceneName, m.entry, m.width, m.height, m.spp, m.seconds, m.seed, m.strategyLength);
+        let reference = m.reference || "";
+        if (m.referenceImage) {  // the page's own reference (an edited scene's): into the module's buffer
+            const r = m.referenceImage;
+            api.module.HEAPF32.set(r.data, api.referenceBuffer(r.width, r.height) >> 2);
+            reference = "given";
+        }
+        const error = api.start(m.sceneText, m.sceneName, m.entry, m.width, m.height, m.spp, m.seconds, m.seed, m.strategyLength, reference);
         if (error) { job = null; postMessage({ type: "error", id: m.id, error }); return; }
         job = { id: m.id, spp: api.spp(), limitSeconds: api.seconds(), passes: 0, seconds: 0, strategies: m.strategyLength > 0 && api.strategies() !== "",
-                lastStrategies: -1e9, strategyPasses: 0, lastFrame: performance.now(), outOfMemory: false, stopped: false, framedPasses: 0 };
+                lastStrategies: -1e9, strategyPasses: 0, lastFrame: performance.now(), outOfMemory: false, stopped: false, paused: false, framedPasses: 0 };
         postMessage({ type: "started", id: m.id, exposure: api.exposure(), width: api.width(), height: api.height(), spp: job.spp, seconds: job.limitSeconds,
                       referenceWidth: api.referenceWidth(), referenceHeight: api.referenceHeight(), strategies: job.strategies,
-                      threadsGiven: !!api.threadsGiven() });
+                      threadsGiven: !!api.threadsGiven(), referenceName: api.referenceName(), commonWidth: api.commonWidth() });
         slice();
+    } else if (m.type === "path") {  // one sample's paths at a pixel of the last pass (the page's path view)
+        const sample = api.pathSample(m.x, m.y);
+        postMessage({ type: "path", id: m.id, x: m.x, y: m.y, sample, outline: sample ? api.sceneOutline() : "" });
+    } else if (m.type === "pause") {
+        if (job) job.paused = true;
+    } else if (m.type === "resume") {
+        if (job && job.paused) { job.paused = false; channel.port2.postMessage(0); }
     } else if (m.type === "stop") {
         if (job) { job.stopped = true; frame(true); job = null; }
         else postMessage({ type: "idle", id: m.id });

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Speed against accuracy. Usage:
 #   classroom/workshop/charts.sh refs      references of every scene (once; kept in scenes/refs/, reused)
+#   classroom/workshop/charts.sh webrefs   the page's own references at the notes' other sizes (classroom/web/refs/)
 #   classroom/workshop/charts.sh charts    every method for the same time on every scene: error-vs-time charts,
 #                             the failure table and the reference check
 #   classroom/workshop/charts.sh efficiency  make efficiency: error at equal samples and 1/(MSE x CPU-s)
@@ -155,6 +156,24 @@ refs() {
       echo "reference $s: $m, $spp1 + $spp2 spp in 2 x $secs s; seed 101 vs seed 102: $diff"
     fi
     { grep -v "^$s," $csv; echo "$row"; } > $csv.tmp && mv $csv.tmp $csv
+  done
+}
+
+# The page's own references (classroom/web/refs/NAME-WxH.pfm), for the notes' buttons whose size
+# and aspect meet no committed reference at 16 pixels or more: the same methods and seeds as
+# refs(), refSeconds / 1.5 a seed (the page's runs are short: their noise stays far below a
+# panel's), with the seeds' difference printed. make web-refs.
+webrefs() {
+  mkdir -p classroom/web/refs
+  for entry in cornell-glass:50x50 refraction:64x48 sds:96x64 sds-point:96x64; do
+    local s=${entry%:*} res=${entry#*:} m secs
+    m=$(refMethod "$s"); secs=$(( $(refSeconds "$s") * 2 / 3 ))
+    for seed in 101 102; do
+      ./bdpt "scenes/$s.scene" --method $m --res "$res" --time "$secs" --seed $seed --quiet --overwrite --out "$LOGS/refs/$s-$res-$seed.png"
+    done
+    ./bdpt --average "$LOGS/refs/$s-$res-101.pfm" "$LOGS/refs/$s-$res-102.pfm" --out "$LOGS/refs/$s-$res.png" --overwrite
+    mv "$LOGS/refs/$s-$res.pfm" "classroom/web/refs/$s-$res.pfm"
+    echo "page reference $s at $res: $m, 2 x $secs s; seed 101 vs 102: $(./bdpt --compare "$LOGS/refs/$s-$res-102.pfm" "$LOGS/refs/$s-$res-101.pfm")"
   done
 }
 

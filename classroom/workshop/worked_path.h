@@ -8,6 +8,8 @@
 //            x_3 the pinhole: L D D E, k = 3, strategies s = 0 ... 3 (s = 4 would hit the pinhole)
 //   caustic: glass-box's L S S D E under the glass ball, seen through pixel (90, 115) at 128x128:
 //            the two able strategies, s = 0 and t = 1, with the true densities and with pbrt's
+//   path:    any path of diffuse vertices from a lamp to the pinhole, given by its points (the
+//            page's path view draws one sample's paths; make test-web checks its weights here)
 #pragma once
 #include <cstdio>
 #include <string>
@@ -46,6 +48,64 @@ inline double cameraDensity(const Scene& scene, const SurfacePoint& x) {
     return toAreaDensity(pdfCameraDirection(scene.camera, normalize(d)), scene.camera.eye, x);
 }
 
+// The densities of a path x_0 (on a lamp) ... x_{k-1} (diffuse surfaces), x_k the pinhole, with
+// which the light side and the camera side would sample each vertex: from the light x_0 uniform on
+// the lamp, x_1 by the lamp's cosine emission, x_{i+1} by x_i's diffuse BSDF (cos / pi) after its
+// roulette q(x_i), the pinhole never; from the camera the pinhole (1, a delta), x_{k-1} through
+// its pixel, x_{i-1} by x_i's BSDF after q(x_i).
+struct PathDensities {
+    std::vector<double> fromLight, fromCamera;
+};
+inline PathDensities densitiesOf(const Scene& scene, const std::vector<SurfacePoint>& x, int lamp) {
+    const int k = int(x.size());  // vertices before the pinhole
+    PathDensities d{std::vector<double>(k + 1, 0), std::vector<double>(k + 1, 1)};
+    d.fromLight[0] = pdfLightPoint(scene, lamp);
+    for (int i = 1; i < k; ++i)
+        d.fromLight[i] = (i == 1 ? 1 : albedoContinuation(scene, x[i - 1])) * toAreaDensity(cosine(x[i - 1], x[i].p) / kPi, x[i - 1].p, x[i]);
+    d.fromCamera[k - 1] = cameraDensity(scene, x[k - 1]);
+    for (int i = k - 2; i >= 0; --i) d.fromCamera[i] = albedoContinuation(scene, x[i + 1]) * toAreaDensity(cosine(x[i + 1], x[i].p) / kPi, x[i + 1].p, x[i]);
+    return d;
+}
+
+// Every strategy s = 0 ... k+1 of the path (s light vertices, the rest from the camera): p_{k,s}
+// from the densities, relative to p_{k,ref}, and its balance, power and max weights.
+inline std::string strategyRows(const PathDensities& d, int ref) {
+    const int n = int(d.fromLight.size());  // vertices, the pinhole included
+    std::vector<double> p(n + 1, 1);
+    double largest = 0, sum = 0, sum2 = 0;
+    for (int s = 0; s <= n; ++s) {
+        for (int i = 0; i < n; ++i) p[s] *= i < s ? d.fromLight[i] : d.fromCamera[i];
+        largest = std::max(largest, p[s]), sum += p[s], sum2 += p[s] * p[s];
+    }
+    const std::string k = std::to_string(n - 1);
+    std::string out = "| s | t | $p_{" + k + ",s}$ | $/\\, p_{" + k + "," + std::to_string(ref) + "}$ | balance | power | max |\n|---|---|---|---|---|---|---|\n";
+    for (int s = 0; s <= n; ++s)
+        out += "| " + std::to_string(s) + " | " + std::to_string(n - s) + " | " + g4(p[s]) + " | " + g4(p[s] / p[ref]) + " | " +
+               format("%.4f", p[s] / sum) + " | " + format("%.4f", p[s] * p[s] / sum2) + " | " + (p[s] == largest ? "1" : "0") + " |\n";
+    return out;
+}
+
+// A path given by its points x_0 (on a lamp) ... x_{k-1}: each point's surface is the one the ray
+// from the next point (the pinhole, for x_{k-1}) meets there.
+inline std::string pathTable(const Scene& scene, const std::vector<Vec3>& points) {
+    std::vector<SurfacePoint> x(points.size());
+    Vec3 from = scene.camera.eye;
+    for (int i = int(points.size()) - 1; i >= 0; --i) {  // (off the surface it starts on, by far more than its rounding)
+        Vec3 d = normalize(points[i] - from);
+        Ray ray{from + d * (i + 1 < int(points.size()) ? 1e-4f * (1 + length(from)) : 0.0f), d};
+        Hit h = intersect(scene, ray);
+        if (!h.found() || length(ray.o + ray.d * h.t - points[i]) > 1e-2f * (1 + length(points[i])))
+            throw std::runtime_error("worked-path: the ray from the next vertex does not reach x_" + std::to_string(i));
+        x[i] = surfaceAt(scene, ray, h);
+        from = x[i].p;
+    }
+    if (scene.shapes[x[0].shape].light < 0) throw std::runtime_error("worked-path: x_0 is not on a lamp");
+    for (const SurfacePoint& v : x)
+        if (materialAt(scene, v).type != Material::Diffuse && scene.shapes[v.shape].light < 0)
+            throw std::runtime_error("worked-path: a path of diffuse vertices only");
+    return strategyRows(densitiesOf(scene, x, x[0].shape), int(points.size()) - 1);
+}
+
 inline std::string cornellTable() {
     Scene scene = loadScene("scenes/cornell.scene");
     int lamp = shapeWithLight(scene);
@@ -65,34 +125,15 @@ inline std::string cornellTable() {
         if (!occluded(scene, shadowRay(x1, x0))) break;
     }
     Vec3 eye = scene.camera.eye;
-    double q1 = albedoContinuation(scene, x1), q2 = albedoContinuation(scene, x2);
-    // From the light: x_0 uniform on the lamp, x_1 by the lamp's cosine emission, x_2 by x_1's
-    // diffuse BSDF (cos / pi) after its roulette q(x_1); the pinhole x_3 cannot be hit.
-    double pL[4] = {pdfLightPoint(scene, lamp), toAreaDensity(cosine(x0, x1.p) / kPi, x0.p, x1),
-                    q1 * toAreaDensity(cosine(x1, x2.p) / kPi, x1.p, x2), 0};
-    // From the camera: x_3 the pinhole (every strategy has it), x_2 through its pixel, x_1 by
-    // x_2's BSDF after q(x_2), x_0 by x_1's BSDF after q(x_1).
-    double pC[4] = {q1 * toAreaDensity(cosine(x1, x0.p) / kPi, x1.p, x0), q2 * toAreaDensity(cosine(x2, x1.p) / kPi, x2.p, x1),
-                    cameraDensity(scene, x2), 1};
-    double p[5], largest = 0;
-    for (int s = 0; s <= 4; ++s) {  // s light vertices, t = 4 - s camera vertices
-        p[s] = 1;
-        for (int i = 0; i < 4; ++i) p[s] *= i < s ? pL[i] : pC[i];
-        largest = std::max(largest, p[s]);
-    }
-    double sum = 0, sum2 = 0;
-    for (double x : p) sum += x, sum2 += x * x;
+    const PathDensities d = densitiesOf(scene, {x0, x1, x2}, lamp);
     const char* where[4] = {"lamp", "red wall", "floor", "pinhole"};  // shapes 3 and 0 of the scene
     Vec3 at[4] = {x0.p, x1.p, x2.p, eye};
     std::string out = "| vertex | where (mm) | from the light | from the camera | light / camera |\n|---|---|---|---|---|\n";
     for (int i = 0; i < 4; ++i)
         out += "| x_" + std::to_string(i) + " | " + where[i] + " (" + format("%.0f", at[i].x) + ", " + format("%.0f", at[i].y) + ", " +
-               format("%.0f", at[i].z) + ") | " + g4(pL[i]) + " | " + (i == 3 ? std::string("1 (delta)") : g4(pC[i])) + " | " +
-               (i == 3 ? std::string("0") : g4(pL[i] / pC[i])) + " |\n";
-    out += "\n| s | t | p_{3,s} | / p_{3,2} | balance | power | max |\n|---|---|---|---|---|---|---|\n";
-    for (int s = 0; s <= 4; ++s)
-        out += "| " + std::to_string(s) + " | " + std::to_string(4 - s) + " | " + g4(p[s]) + " | " + g4(p[s] / p[2]) + " | " +
-               format("%.4f", p[s] / sum) + " | " + format("%.4f", p[s] * p[s] / sum2) + " | " + (p[s] == largest ? "1" : "0") + " |\n";
+               format("%.0f", at[i].z) + ") | " + g4(d.fromLight[i]) + " | " + (i == 3 ? std::string("1 (delta)") : g4(d.fromCamera[i])) + " | " +
+               (i == 3 ? std::string("0") : g4(d.fromLight[i] / d.fromCamera[i])) + " |\n";
+    out += "\n" + strategyRows(d, 2);
     return out;
 }
 
@@ -152,7 +193,7 @@ inline std::string causticTable() {
     std::string out = "| | value |\n|---|---|\n";
     out += "| D, the floor point (m) | (" + format("%.3f", D.p.x) + ", " + format("%.3f", D.p.y) + ", " + format("%.3f", D.p.z) + ") |\n";
     out += "| p_cam(D) | " + g4(pCam) + " |\n| q(D) | " + g4(q) + " |\n| p_light(L) | " + g4(pLight) + " |\n";
-    out += "| p_{4,0} / p_{4,4} = p_cam(D) q(D) / p_light(L) | " + g4(ratio) + " |\n";
+    out += "| $p_{4,0} / p_{4,4} = p_\\text{cam}(D)\\, q(D) / p_\\text{light}(L)$ | " + g4(ratio) + " |\n";
     out += "| balance weights, s = 0 and t = 1 | " + format("%.4f", ratio / (1 + ratio)) + " and " + format("%.4f", 1 / (1 + ratio)) + " |\n";
     out += "| \\|L - S1\\| and \\|S2 - D\\| (m) | " + format("%.3f", dLS1) + " and " + format("%.3f", dS2D) + " |\n";
     out += "| pbrt's stray factor (\\|L - S1\\| / \\|S2 - D\\|)^2 cos_D cos_S2 / (cos_L cos_S1) | " + g4(stray) + " |\n";
