@@ -8,7 +8,8 @@
 //   7 integrators: the slides' panels (a)-(f): pt, nee, lt, ir, bdpt
 //   8 later: the slides' "later" methods, vcm and Metropolis (pssmlt, mmlt, mlt)
 //   9 film & rendering loop  10 scene file         11 command line
-//   appendices, at the end: B the BVH, C Sobol points fast (the notes' appendices B and C)
+//   appendices, at the end: the data structures no slide shows: B the BVH, C Sobol points (the
+//   notes' appendices B and C), D vcm's hash grid
 // Units: radiance L, intensity I, power Phi, importance W_e. Directions point away from surfaces.
 // It compiles alone: g++ -O2 -std=c++17 -pthread bdpt.cpp -lstb. The classroom's tools (side by
 // side, live images, error against a reference, figures) are in classroom/, which includes it
@@ -83,12 +84,12 @@ inline float sqr(float x) { return x * x; }
 
 // PCG32 (O'Neill): small state, good statistics, and independent streams: every pixel and pass has
 // its own generator, and the image does not depend on the number of threads. Every number a method
-// draws passes Rng::uniform, which has three sources: PCG32 itself; a Sobol point (below), whose
+// draws passes Rng::uniform, which has three sources: PCG32 itself; a Sobol point (appendix C), whose
 // coordinates it hands out in order; and a Metropolis chain's state (section 8 (h), replay), which
 // hands a walker its chain's numbers so that a mutation can change them.
 struct PrimaryStream;
 float replayUniform(PrimaryStream& stream);
-constexpr uint32_t kLowDiscrepancyDimensions = 32;  // below: dimensions drawn from a Sobol point
+constexpr uint32_t kLowDiscrepancyDimensions = 32;  // the dimensions drawn from a Sobol point
 struct Rng {
     uint64_t state = 0, inc = 1;
     PrimaryStream* replay = nullptr;  // pssmlt, mmlt: numbers come from this state (and are recorded there)
@@ -127,100 +128,11 @@ inline Rng makeRng(uint64_t seed, uint64_t a, uint64_t b) {
     return r;
 }
 
-// -- Quasi-random numbers ("stratification"). N independent samples leave gaps and clumps: the
-// error falls as N^-1/2. N points filling the unit square evenly, one in every cell of every grid
-// of N equal cells (the "elementary intervals"), miss no region: the RMSE falls as N^-3/2 for smooth
-// 2D integrands with Owen's scramble, N^-3/4 across a shadow's edge (page 9 measures N^-0.7). A
-// path's numbers (film position, then per vertex the lamp choice, the lamp point, the BSDF's
-// direction, roulette) are one point in many dimensions, stratified jointly by the Sobol sequence:
-// dimension d is x_d(i) = C_d i (i's bits times a binary matrix, read as a binary fraction), and
-// its first 2^m points, and every aligned block of 2^m after them, fill the elementary intervals of
-// every low-dimensional projection nearly evenly. C_0 is the identity (the radical inverse); the
-// others come from a primitive polynomial and Joe and Kuo's (2008) direction numbers m_k. Each
-// pixel's sequence is randomised by a nested uniform scramble (Owen 1995): every binary digit of
-// every coordinate flipped by a random function of the digits before it, which keeps the
-// stratification, makes each point uniform in [0,1)^d (the estimator stays unbiased) and pixels'
-// errors independent. Dimensions past kLowDiscrepancyDimensions (deep bounces) come from PCG32.
-
-constexpr uint32_t reverseBits(uint32_t x) {
-    x = (x << 16) | (x >> 16);
-    x = ((x & 0x00FF00FFu) << 8) | ((x >> 8) & 0x00FF00FFu);
-    x = ((x & 0x0F0F0F0Fu) << 4) | ((x >> 4) & 0x0F0F0F0Fu);
-    x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
-    return ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
-}
-
-// Dimension d >= 1: the polynomial x^s + a_1 x^(s-1) + ... + 1 (a_1.. the bits of `a`) and m_1..m_s.
-struct SobolPolynomial {
-    uint32_t degree, a, m[7];
-};
-constexpr SobolPolynomial kJoeKuo[kLowDiscrepancyDimensions - 1] = {
-    {1, 0, {1}}, {2, 1, {1, 3}}, {3, 1, {1, 3, 1}}, {3, 2, {1, 1, 1}}, {4, 1, {1, 1, 3, 3}},
-    {4, 4, {1, 3, 5, 13}}, {5, 2, {1, 1, 5, 5, 17}}, {5, 4, {1, 1, 5, 5, 5}}, {5, 7, {1, 1, 7, 11, 19}},
-    {5, 11, {1, 1, 5, 1, 1}}, {5, 13, {1, 1, 1, 3, 11}}, {5, 14, {1, 3, 5, 5, 31}},
-    {6, 1, {1, 3, 3, 9, 7, 49}}, {6, 13, {1, 1, 1, 15, 21, 21}}, {6, 16, {1, 3, 1, 13, 27, 49}},
-    {6, 19, {1, 1, 1, 15, 7, 5}}, {6, 22, {1, 3, 1, 15, 13, 25}}, {6, 25, {1, 1, 5, 5, 19, 61}},
-    {7, 1, {1, 3, 7, 11, 23, 15, 103}}, {7, 4, {1, 3, 7, 13, 13, 15, 69}}, {7, 7, {1, 1, 3, 13, 7, 35, 63}},
-    {7, 8, {1, 3, 5, 9, 1, 25, 53}}, {7, 14, {1, 3, 1, 13, 9, 35, 107}}, {7, 19, {1, 3, 1, 5, 27, 61, 31}},
-    {7, 21, {1, 1, 5, 11, 19, 41, 61}}, {7, 28, {1, 3, 5, 3, 3, 13, 69}}, {7, 31, {1, 1, 7, 13, 1, 19, 1}},
-    {7, 32, {1, 3, 7, 5, 13, 19, 59}}, {7, 37, {1, 1, 3, 9, 25, 29, 41}}, {7, 41, {1, 3, 5, 13, 23, 1, 55}},
-    {7, 42, {1, 3, 7, 3, 13, 59, 17}},
-};
-// The generator matrices' columns in digit order (bit j = the fraction's digit j+1): column k is
-// m_k / 2^k, then Sobol's recurrence m_k = 2 a_1 m_(k-1) ^ 4 a_2 m_(k-2) ^ ... ^ 2^s m_(k-s) ^ m_(k-s).
-struct SobolMatrices {
-    uint32_t column[32][kLowDiscrepancyDimensions];  // [k][d]: column k of every C_d side by side
-};
-constexpr SobolMatrices makeSobolMatrices() {
-    SobolMatrices C{};
-    for (uint32_t k = 0; k < 32; ++k) C.column[k][0] = 1u << k;
-    for (uint32_t d = 1; d < kLowDiscrepancyDimensions; ++d) {
-        const SobolPolynomial& p = kJoeKuo[d - 1];
-        uint32_t m[32] = {};
-        for (uint32_t k = 0; k < 32; ++k) {
-            if (k < p.degree) {
-                m[k] = p.m[k];
-            } else {
-                m[k] = m[k - p.degree] ^ (m[k - p.degree] << p.degree);
-                for (uint32_t j = 1; j < p.degree; ++j)
-                    if ((p.a >> (p.degree - 1 - j)) & 1) m[k] ^= m[k - j] << j;
-            }
-            C.column[k][d] = reverseBits(m[k] << (31 - k));
-        }
-    }
-    return C;
-}
-constexpr SobolMatrices kSobol = makeSobolMatrices();
-
-// The nested uniform scramble in digit order: each bit flipped by a hash of the bits below it, as
-// adding the seed and xor-ing even multiples does (Laine and Karras 2011, Burley's constants 2020).
-inline uint32_t scrambleDigits(uint32_t digits, uint32_t seed) {
-    digits += seed;
-    digits ^= digits * 0x6C50B47Cu;
-    digits ^= digits * 0xB82F1E52u;
-    digits ^= digits * 0xC7AFE638u;
-    digits ^= digits * 0x8D22F6E6u;
-    return digits;
-}
-// A stream's own order of the sequence (Burley 2020): index's bits scrambled like a coordinate's
-// digits, from the top: the first 2^m indices map onto one aligned block of 2^m (a net) in a random
-// order. Two streams whose numbers meet in one path (bdpt's camera and light subpaths, a pixel and
-// ir's VPLs) must not draw the same point i: x_d(i) and y_d(i) would share i's digits and cluster
-// along a scrambled diagonal (bdpt's MSE falling as N^-0.7, not N^-1). Within blocks of 2^16
-// passes: fewer bits set, fewer columns to add up in sobolPoint.
-inline uint32_t shuffledIndex(uint32_t index, uint32_t seed) {
-    uint32_t low = reverseBits(scrambleDigits(reverseBits(index & 0xFFFFu), seed)) & 0xFFFFu;
-    return (index & ~0xFFFFu) | low;
-}
-// Coordinate d of point `index`, its digits scrambled by `seed`, as a fraction of 24 digits: the
-// definition above, word for word. Appendix C computes the same numbers fast (a point's 32
-// coordinates at once, the seeds composed at compile time); test_sampler holds the two equal.
-inline float sobolSample(uint32_t index, uint32_t d, uint32_t seed) {
-    uint32_t digits = 0;
-    for (uint32_t k = 0; k < 32; ++k)
-        if ((index >> k) & 1) digits ^= kSobol.column[k][d];  // x_d(i) = C_d i
-    return float(reverseBits(scrambleDigits(digits, seed)) >> 8) * 0x1p-24f;
-}
+// -- Quasi-random numbers ("stratification"): by default a path's numbers are one point of a
+// scrambled Sobol sequence, which fills the unit cube more evenly than independent numbers do
+// (notes, page 9 and Appendix C). No slide needs its construction: appendix C, at the end.
+inline uint32_t shuffledIndex(uint32_t index, uint32_t seed);         // a stream's own order of the points
+inline float sobolSample(uint32_t index, uint32_t d, uint32_t seed);  // coordinate d, by the definition
 // Appendix C: point `index`'s unscrambled digits, all dimensions; the same cached per thread.
 inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]);
 inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]);
@@ -819,7 +731,8 @@ inline void setResolution(Camera& cam, int width, int height) {
 // bring to other pixels splatted; a diff of two methods shows how they differ. ir, vcm and the
 // Metropolis methods first prepare what the whole pass shares (section 9's preparePass).
 // Paths are counted in bounces (scattering vertices): a path of k segments has k-1 bounces, and
-// --maxdepth D keeps paths with at most D bounces.
+// --maxdepth D keeps paths with at most D bounces. Of what follows, pt needs the options, the
+// Rng's streams, RowOutput and roulette; (a) begins at samplePT.
 enum class Method { PT, NEE, LT, IR, BDPT, VCM, PSSMLT, MMLT, MLT };
 inline bool isMetropolis(Method m) { return m == Method::PSSMLT || m == Method::MMLT || m == Method::MLT; }  // section 8 (h)
 // How a subpath ends: Throughput, q from its throughput after rrStart bounces (pt and nee always);
@@ -834,11 +747,11 @@ struct IrOptions {
     int vplPaths = 16;         // light paths traced per pass, each leaving VPLs
     float clamp = 0;           // > 0 bounds the geometry term G at this value (panel (e))
 };
-struct VcmOptions {
+struct VcmOptions {  // later: (g)
     float radius = -1;         // r_0 of merging; 0: none (vcm is bdpt); < 0: defaultMergeRadius
     float alpha = 0.75f;       // r(n) = r_0 n^((alpha-1)/2) in pass n
 };
-struct MetropolisOptions {
+struct MetropolisOptions {  // later: (h)
     float largeStep = 0.3f;    // pssmlt, mmlt: probability of a large step (every number afresh)
     float sigma = 0.01f;       // pssmlt, mmlt: a small step's standard deviation, per number
     int bootstrap = 0;         // samples that estimate b and choose the chains' starts (0: bootstrapSamples)
@@ -1059,9 +972,11 @@ inline CameraConnection connectToCamera(const Scene& scene, const SurfacePoint& 
 }
 
 // -- Subpaths, shared by lt, ir and bdpt (slides: "Generating light paths", "Extension of paths
-// at hit points"): a list of vertices, each with the throughput beta that reached it. A connection
-// joins a light-side vertex y to a camera-side vertex x and multiplies the factor G f f of T(pi)
-// that neither side sampled: both scattering factors (cosines included, section 4), 1/d^2 and V.
+// at hit points", "Mathematical Formulation"): a list of vertices, each with the throughput beta
+// that reached it. A connection joins a light-side vertex y to a camera-side vertex x and
+// multiplies the factor G f f of T(pi) that neither side sampled: both scattering factors
+// (cosines included, section 4), 1/d^2 and V. The densities and roulette below use strategies and
+// density ratios that (f)'s banner defines: read them again after it.
 // lt is the connection to the pinhole (t = 1) alone, ir that of one camera vertex to stored light
 // vertices, bdpt every connection.
 struct PathVertex {
@@ -1128,7 +1043,7 @@ inline double toArea(double pdfOmega, const PathVertex& next, Vec3 w, float dist
 // left in pdfFwd and pdfRev are eta^2 |cos| at x_j (here) and the |cos|/d^2 of the
 // conversion to area at the next vertex. Kept, they cancel along a chain a S..S b, all but its ends':
 //     p(a ... b) / p(b ... a) = [p_omega(a) / (eta_a^2 |cos_a|)] / [p_omega(b) / (eta_b^2 |cos_b|)].
-// pbrt stores the density after a delta event as 1 (--delta-density-one), dropping that |cos|/d^2:
+// pbrt stores 0 after a delta event and its MISWeight counts a 0 as 1 (remap0; --delta-density-one):
 // for a caustic millimetres below a glass ball it is huge, and pbrt's convention hands the caustic
 // to the noisy s = 0 instead of light tracing (notes, page 10M).
 inline float specularDensity(const Scene& scene, const SurfacePoint& sp, Vec3 w) {
@@ -1363,8 +1278,10 @@ inline Vec3 sampleIR(const Scene& scene, const SampleOptions& opt, const PassDat
 }
 
 // -- (f) bdpt: "bidirectional path tracing" (Lafortune & Willems 1993; Veach & Guibas 1995).
-// One camera subpath z_0..z_{t-1} (z_0 the pinhole) and one light subpath y_0..y_{s-1} (y_0 on a
-// light) per sample; every pair is connected, which makes the path x_0..x_k = y_0..y_{s-1}
+// Slides "Solving the Rendering Equation" ("one pair of paths per pixel sample"), "Notation",
+// "Bidirectional Probabilities" (p_{k,m}) and "Implementation" (the max heuristic's loop: below,
+// connectSubpaths). One camera subpath z_0..z_{t-1} (z_0 the pinhole) and one light subpath
+// y_0..y_{s-1} (y_0 on a light) per sample; every pair is connected, which makes the path x_0..x_k = y_0..y_{s-1}
 // z_{t-1}..z_0 of k = s+t-1 segments with the strategy the slides call p_{k,s} ("m vertices from
 // the light"): s = 0 the camera path hits an emitter, s = 1 next event, t = 1 light tracing, the
 // rest "connect paths deterministically (every pair of two hit points)". Each strategy alone is
@@ -1566,7 +1483,8 @@ inline Vec3 sampleBDPT(const Scene& scene, const SampleOptions& opt, const PassD
 // Both reuse section 7's subpaths, connections and MIS walk; notes pages 15-17 teach them.
 
 // -- (g) vcm: "Vertex Connection and Merging (VCM, later)" (Georgiev, Krivanek, Davidovic and
-// Slusallek 2012; Hachisuka, Pantaleoni and Jensen 2012). Panel (f)'s limit: a connection needs
+// Slusallek 2012; Hachisuka, Pantaleoni and Jensen 2012). Panel (f)'s limit, the slides' "problem
+// of insufficient techniques" for SDS paths: a connection needs
 // two non-specular vertices side by side, so a path L S D S E (a caustic seen in a mirror, a point
 // light in a glass ball seen through glass) has no strategy but s = 0, and none for a point light.
 // Merging adds one: a light subpath that lands at y within radius r of a camera vertex x counts as
@@ -1595,60 +1513,11 @@ struct HashGrid {
     std::vector<uint32_t> bucketStart;  // bucket b holds records bucketStart[b] .. bucketStart[b+1] - 1
 };
 
-inline int64_t gridCell(const HashGrid& g, float x) { return int64_t(std::floor(x * g.cellsPerUnit)); }
-inline uint32_t gridBucket(const HashGrid& g, int64_t x, int64_t y, int64_t z) {
-    return (uint32_t(x) * 73856093u ^ uint32_t(y) * 19349663u ^ uint32_t(z) * 83492791u) & g.bucketMask;
-}
-
-// Builds the grid of `points`; returns the bucket order (the grid's record e is points[order[e]]).
-inline std::vector<uint32_t> buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius) {
-    g.radius = radius;
-    g.cellsPerUnit = radius > 0 ? 0.5f / radius : 0;
-    size_t buckets = 1;
-    while (buckets < points.size()) buckets *= 2;
-    g.bucketMask = uint32_t(buckets - 1);
-    g.bucketStart.assign(buckets + 1, 0);
-    std::vector<uint32_t> bucket(points.size()), order(points.size());
-    for (size_t i = 0; i < points.size(); ++i) {
-        Vec3 p = points[i];
-        ++g.bucketStart[(bucket[i] = gridBucket(g, gridCell(g, p.x), gridCell(g, p.y), gridCell(g, p.z))) + 1];
-    }
-    for (size_t b = 1; b < g.bucketStart.size(); ++b) g.bucketStart[b] += g.bucketStart[b - 1];
-    std::vector<uint32_t> fill(g.bucketStart.begin(), g.bucketStart.end() - 1);
-    for (size_t i = 0; i < points.size(); ++i) order[fill[bucket[i]]++] = uint32_t(i);
-    return order;
-}
-
-// Calls visit(e), in a fixed order, for every record e (in bucket order, with its point .p) within r of p.
+// Appendix D, at the end of the file, builds the grid (returning the records' bucket order: record
+// e is points[order[e]]) and queries it (visit(e) for every record within r of p, in a fixed order).
+inline std::vector<uint32_t> buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius);
 template <class Record, class Visit>
-inline void forEachNeighbour(const HashGrid& g, const std::vector<Record>& records, Vec3 p, Visit&& visit) {
-    if (records.empty()) return;
-    const float r2 = g.radius * g.radius;
-    // The cells of p - r and p + r on each axis (at most 3 apart by rounding), as the build computes them.
-    int64_t lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) lo[a] = gridCell(g, p[a] - g.radius), hi[a] = gridCell(g, p[a] + g.radius);
-    uint32_t buckets[27], begin[27], end[27];  // 8 unless rounding puts p - r and p + r three cells apart
-    int count = 0;
-    for (int64_t z = lo[2]; z <= hi[2]; ++z)
-        for (int64_t y = lo[1]; y <= hi[1]; ++y)
-            for (int64_t x = lo[0]; x <= hi[0]; ++x) {
-                uint32_t b = gridBucket(g, x, y, z);
-                if (std::find(buckets, buckets + count, b) != buckets + count) continue;
-                buckets[count++] = b;
-                __builtin_prefetch(&g.bucketStart[b]);
-            }
-    // Each bucket is two cache misses: asked for all at once, they overlap (two misses, not sixteen).
-    for (int i = 0; i < count; ++i) {
-        begin[i] = g.bucketStart[buckets[i]];
-        end[i] = g.bucketStart[buckets[i] + 1];
-        if (begin[i] < end[i]) __builtin_prefetch(&records[begin[i]]);
-    }
-    for (int i = 0; i < count; ++i)
-        for (uint32_t e = begin[i]; e < end[i]; ++e) {
-            Vec3 d = records[e].p - p;
-            if (dot(d, d) <= r2) visit(e);
-        }
-}
+inline void forEachNeighbour(const HashGrid& g, const std::vector<Record>& records, Vec3 p, Visit&& visit);
 
 // The pass's light subpaths: pixel p's is paths[p], its vertices stored row by row; the grid adds
 // only where each mergeable vertex lies and which it is (24 bytes), not a copy of the vertices.
@@ -3057,16 +2926,6 @@ inline bool makeFolders(const std::string& path) {
     }
     return true;
 }
-// Why a folder cannot be made: the first part of it that is a file, or the system's reason.
-inline std::string folderProblem(const std::string& path, int reason = errno) {  // reason: mkdir's, before stat overwrites errno
-    for (size_t i = 1; i <= path.size(); ++i) {
-        if (i < path.size() && path[i] != '/') continue;
-        struct stat st;
-        if (stat(path.substr(0, i).c_str(), &st) == 0 && !S_ISDIR(st.st_mode)) return path.substr(0, i) + " is a file";
-    }
-    return std::strerror(reason);
-}
-
 // Files appear whole or not at all: written under a temporary name, then renamed.
 inline std::string tempName(const std::string& path) { return path + ".tmp" + std::to_string(getpid()); }
 inline bool commitFile(const std::string& tmp, const std::string& path, bool ok) {
@@ -3439,6 +3298,44 @@ constexpr const char* kHeuristicNames[] = {"balance", "power", "max", "uniform"}
 constexpr const char* kRouletteNames[] = {"throughput", "albedo", "off"};                           // in Roulette's order
 constexpr const char* kSamplerNames[] = {"sobol", "random"};                                         // in Sampler's order
 inline const char* methodName(Method m) { return kMethodNames[int(m)]; }
+// Each method's slide: the caption of its panel of "Results from Different Techniques", or of the
+// later method's slide; what it does; the notes' pages. --help, ./bdpt's side-by-side figures and
+// the page all read this one table (in Method's order).
+struct MethodCaption {
+    const char *caption, *what, *pages;
+};
+constexpr MethodCaption kMethodCaptions[] = {
+    {"(a) Unidirectional (eye tracing)", "emission counted only when a path hits a light", "1"},
+    {"(b) Unidirectional + next event", "at every diffuse hit a shadow ray to a point on a light", "2"},
+    {"(c) Next event (light tracing)", "light paths, each vertex joined to the camera and splatted; no mirror or glass seen", "2"},
+    {"(d) Instant radiosity", "camera paths gather the virtual point lights light paths left", "1"},
+    {"(f) Bidirectional path tracing", "every (s,t) strategy of a path, weighted by MIS (the default method)", "3-11"},
+    {"Vertex Connection and Merging (VCM, later)", "bdpt's connections plus merges of a camera vertex with nearby light vertices: the SDS paths of (f)", "15"},
+    {"Metropolis-Sampling (see later): pssmlt", "Kelemen's primary-sample-space MLT, chains that mutate the random numbers of bdpt's sample", "16"},
+    {"Metropolis-Sampling (see later): mmlt", "multiplexed MLT (pbrt's), pssmlt whose state also picks one path length and one strategy (s,t)", "16"},
+    {"Metropolis-Sampling (see later): Veach's mlt", "Markov chains of paths, mutated by replacing a few vertices or moving them a little; --spp N: N mutations per pixel", "17"},
+};
+// --method's help, from the table: a method's line, wrapped at 58 characters under its name.
+inline const char* methodHelp() {
+    static const std::string text = [] {
+        std::string all;
+        for (int m = 0; m < int(std::size(kMethodNames)); ++m) {
+            const MethodCaption& c = kMethodCaptions[m];
+            const bool colon = std::string(c.caption).find(':') != std::string::npos;
+            std::string words = std::string(c.caption) + (colon ? ", " : ": ") + c.what, line = kMethodNames[m];
+            line.resize(std::max<size_t>(line.size() + 1, 5), ' ');
+            for (size_t at = 0, next; at < words.size(); at = next + 1) {
+                next = std::min(words.find(' ', at), words.size());
+                if (line.size() + (next - at) > 58 && line.find_first_not_of(' ') < line.size() - 1)
+                    all += line.substr(0, line.size() - 1) + "\n", line = "     ";
+                line += words.substr(at, next - at) + " ";
+            }
+            all += line.substr(0, line.size() - 1) + (m + 1 < int(std::size(kMethodNames)) ? "\n" : "");
+        }
+        return all;
+    }();
+    return text.c_str();
+}
 
 struct CommandLine {
     std::string scenePath, out = "render.png";
@@ -3524,20 +3421,7 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      "Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)\n"
      "and, beside it, a PFM with the linear values. For example:\n"
      "  ./bdpt scenes/cornell.scene --method bdpt --spp 64 --out build/cornell.png\n\nMethod", nullptr},
-    {"--method", "M", {}, "", "pt   (a) eye tracing: emission counted only when a path hits a light\n"
-     "nee  (b) path tracing with next-event estimation\n"
-     "lt   (c) light tracing: light paths splatted onto the film\n"
-     "ir   (d) instant radiosity: camera paths gather virtual point lights\n"
-     "bdpt (f) bidirectional path tracing, all (s,t) strategies with MIS (default)\n"
-     "vcm  (later) bdpt's connections plus vertex merging: the SDS paths of (f)\n"
-     "mlt  (see later) Metropolis light transport (Veach's): Markov chains of\n"
-     "     paths, mutated by replacing a few vertices (bidirectional mutation) or\n"
-     "     by moving them a little (lens, caustic, multi-chain perturbations);\n"
-     "     --spp N means N mutations per pixel on average\n"
-     "pssmlt (see later) primary-sample-space MLT (Kelemen's): chains that mutate\n"
-     "     the random numbers of bdpt's whole sample\n"
-     "mmlt (see later) multiplexed MLT (pbrt's): pssmlt whose state also picks one\n"
-     "     path length and one strategy (s,t), weighted by bdpt's MIS",
+    {"--method", "M", {}, "", methodHelp(),
      [](CL& cl, A& a) { cl.opt.method = a.choice<Method>("method", kMethodNames); }},
     {"--mis", "", {Method::NEE}, "--method nee", "nee: weight light and BSDF sampling with the power heuristic",
      [](CL& cl, A&) { cl.opt.mis = true; }},
@@ -3552,14 +3436,13 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      "where the central camera ray meets the scene); 0: no merging, as bdpt.\n"
      "vcm keeps a pass's light subpaths, about 140 bytes per light vertex (the\n"
      "vertex, and a grid record if mergeable), 1 to 6 light vertices per pixel on\n"
-     "the scenes: the summary line reports both",
+     "the scenes",
      [](CL& cl, A& a) { cl.opt.vcm.radius = float(a.number(0, 1e30)); }},
     {"--alpha", "A", {Method::VCM}, "--method vcm", "vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1\n(default 0.75)",
      [](CL& cl, A& a) { cl.opt.vcm.alpha = float(a.number(1e-3, 1)); }},
     {"--strategies", "DIR", {Method::BDPT, Method::VCM}, "--method bdpt and vcm", "bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length\n"
      "(vcm: and one of all merges per path length), unweighted and MIS-weighted,\n"
-     "and two pyramid montages, into DIR (each pyramid row brightened by the\n"
-     "stops printed in its tiles' labels)",
+     "into DIR",
      [](CL& cl, A& a) { cl.strategiesDir = a.value(); }},
     {"--strategy-length", "K", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)",
      "longest path (segments) with per-strategy images (default 5)", [](CL& cl, A& a) { cl.strategyLength = int(a.integer(1, 12)); }},
@@ -3571,7 +3454,7 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      "normalisation b and choose the chains' starts in proportion to their\n"
      "brightness (default 100000 for pssmlt, 200000 for mlt, 1000000 for mmlt,\nwhich spreads them over the path lengths)",
      [](CL& cl, A& a) { cl.opt.metropolis.bootstrap = int(a.integer(1, 1e8)); }},
-    {"--chains", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: Markov chains, each its own random stream (default 1024 for mlt, 256 otherwise)",
+    {"--chains", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: Markov chains, each its own random stream\n(default 1024 for mlt, 256 otherwise)",
      [](CL& cl, A& a) { cl.opt.metropolis.chains = int(a.integer(1, 1e6)); }},
     {"--mutations", "LIST", {Method::MLT}, "--method mlt", "mlt: Veach's mutations to use, among bidir, lens, caustic and multichain,\n"
      "comma-separated; bidir is always among them (default: all four)",
@@ -3612,8 +3495,9 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      [](CL& cl, A&) { cl.opt.noScramble = true; }},
     {nullptr, "", {}, "", "Sampling", nullptr},
     {"--spp", "N", {}, "", "N passes of one sample per pixel (default 16)", [](CL& cl, A& a) { cl.opt.spp = int(a.integer(1, 1e8)); }},
-    {"--time", "SECONDS", {}, "", "render passes until SECONDS of CPU time are spent, all threads together (replaces --spp):\n"
-     "a busy machine gives the same image, later; two threads finish in about half as many wall seconds",
+    {"--time", "SECONDS", {}, "", "render passes until SECONDS of CPU time are spent, all threads together\n"
+     "(replaces --spp): a busy machine gives the same image, later; two threads\n"
+     "finish in about half as many wall seconds",
      [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7); }},
     {"--wall-time", "SECONDS", {}, "", "render passes until SECONDS of wall-clock time have passed (replaces --spp)",
      [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7), cl.opt.wallTime = true; }},
@@ -3637,7 +3521,7 @@ inline const std::vector<OptionRow<CommandLine>> kOptions = {
      }},
     {"--exposure", "STOPS", {}, "", "scale the PNG by 2^STOPS (the PFM stays linear)",
      [](CL& cl, A& a) { cl.exposure = float(a.number(-50, 50)), cl.exposureGiven = true; }},
-    {"--quiet", "", {}, "", "no progress bar and no summary line", [](CL& cl, A&) { cl.quiet = true; }},
+    {"--quiet", "", {}, "", "no summary line", [](CL& cl, A&) { cl.quiet = true; }},
     {"--help", "", {}, "", "this text", [](CL& cl, A&) { cl.help = true; }},
     {nullptr, "", {}, "", "Exit status: 0 done, 1 an output file cannot be written, 2 bad scene file or option.", nullptr},
 };
@@ -4101,8 +3985,102 @@ inline Hit traverseBvh(const Bvh& bvh, const Ray& ray) {
 }
 inline void buildAcceleration(Scene& scene) { scene.bvh = std::make_shared<const Bvh>(buildBvh(scene.shapes)); }
 
-// == Appendix C. Sobol points, fast ==========================================================
-// The same numbers as section 1's sobolSample (test_sampler holds them equal), for every path's
+// == Appendix C. Sobol points: the definition, then the same numbers fast ====================
+// -- Quasi-random numbers ("stratification"). N independent samples leave gaps and clumps: the
+// error falls as N^-1/2. N points filling the unit square evenly, one in every cell of every grid
+// of N equal cells (the "elementary intervals"), miss no region: the RMSE falls as N^-3/2 for smooth
+// 2D integrands with Owen's scramble, N^-3/4 across a shadow's edge (page 9 measures N^-0.7). A
+// path's numbers (film position, then per vertex the lamp choice, the lamp point, the BSDF's
+// direction, roulette) are one point in many dimensions, stratified jointly by the Sobol sequence:
+// dimension d is x_d(i) = C_d i (i's bits times a binary matrix, read as a binary fraction), and
+// its first 2^m points, and every aligned block of 2^m after them, fill the elementary intervals of
+// every low-dimensional projection nearly evenly. C_0 is the identity (the radical inverse); the
+// others come from a primitive polynomial and Joe and Kuo's (2008) direction numbers m_k. Each
+// pixel's sequence is randomised by a nested uniform scramble (Owen 1995): every binary digit of
+// every coordinate flipped by a random function of the digits before it, which keeps the
+// stratification, makes each point uniform in [0,1)^d (the estimator stays unbiased) and pixels'
+// errors independent. Dimensions past kLowDiscrepancyDimensions (deep bounces) come from PCG32.
+
+constexpr uint32_t reverseBits(uint32_t x) {
+    x = (x << 16) | (x >> 16);
+    x = ((x & 0x00FF00FFu) << 8) | ((x >> 8) & 0x00FF00FFu);
+    x = ((x & 0x0F0F0F0Fu) << 4) | ((x >> 4) & 0x0F0F0F0Fu);
+    x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
+    return ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
+}
+
+// Dimension d >= 1: the polynomial x^s + a_1 x^(s-1) + ... + 1 (a_1.. the bits of `a`) and m_1..m_s.
+struct SobolPolynomial {
+    uint32_t degree, a, m[7];
+};
+constexpr SobolPolynomial kJoeKuo[kLowDiscrepancyDimensions - 1] = {
+    {1, 0, {1}}, {2, 1, {1, 3}}, {3, 1, {1, 3, 1}}, {3, 2, {1, 1, 1}}, {4, 1, {1, 1, 3, 3}},
+    {4, 4, {1, 3, 5, 13}}, {5, 2, {1, 1, 5, 5, 17}}, {5, 4, {1, 1, 5, 5, 5}}, {5, 7, {1, 1, 7, 11, 19}},
+    {5, 11, {1, 1, 5, 1, 1}}, {5, 13, {1, 1, 1, 3, 11}}, {5, 14, {1, 3, 5, 5, 31}},
+    {6, 1, {1, 3, 3, 9, 7, 49}}, {6, 13, {1, 1, 1, 15, 21, 21}}, {6, 16, {1, 3, 1, 13, 27, 49}},
+    {6, 19, {1, 1, 1, 15, 7, 5}}, {6, 22, {1, 3, 1, 15, 13, 25}}, {6, 25, {1, 1, 5, 5, 19, 61}},
+    {7, 1, {1, 3, 7, 11, 23, 15, 103}}, {7, 4, {1, 3, 7, 13, 13, 15, 69}}, {7, 7, {1, 1, 3, 13, 7, 35, 63}},
+    {7, 8, {1, 3, 5, 9, 1, 25, 53}}, {7, 14, {1, 3, 1, 13, 9, 35, 107}}, {7, 19, {1, 3, 1, 5, 27, 61, 31}},
+    {7, 21, {1, 1, 5, 11, 19, 41, 61}}, {7, 28, {1, 3, 5, 3, 3, 13, 69}}, {7, 31, {1, 1, 7, 13, 1, 19, 1}},
+    {7, 32, {1, 3, 7, 5, 13, 19, 59}}, {7, 37, {1, 1, 3, 9, 25, 29, 41}}, {7, 41, {1, 3, 5, 13, 23, 1, 55}},
+    {7, 42, {1, 3, 7, 3, 13, 59, 17}},
+};
+// The generator matrices' columns in digit order (bit j = the fraction's digit j+1): column k is
+// m_k / 2^k, then Sobol's recurrence m_k = 2 a_1 m_(k-1) ^ 4 a_2 m_(k-2) ^ ... ^ 2^s m_(k-s) ^ m_(k-s).
+struct SobolMatrices {
+    uint32_t column[32][kLowDiscrepancyDimensions];  // [k][d]: column k of every C_d side by side
+};
+constexpr SobolMatrices makeSobolMatrices() {
+    SobolMatrices C{};
+    for (uint32_t k = 0; k < 32; ++k) C.column[k][0] = 1u << k;
+    for (uint32_t d = 1; d < kLowDiscrepancyDimensions; ++d) {
+        const SobolPolynomial& p = kJoeKuo[d - 1];
+        uint32_t m[32] = {};
+        for (uint32_t k = 0; k < 32; ++k) {
+            if (k < p.degree) {
+                m[k] = p.m[k];
+            } else {
+                m[k] = m[k - p.degree] ^ (m[k - p.degree] << p.degree);
+                for (uint32_t j = 1; j < p.degree; ++j)
+                    if ((p.a >> (p.degree - 1 - j)) & 1) m[k] ^= m[k - j] << j;
+            }
+            C.column[k][d] = reverseBits(m[k] << (31 - k));
+        }
+    }
+    return C;
+}
+constexpr SobolMatrices kSobol = makeSobolMatrices();
+
+// The nested uniform scramble in digit order: each bit flipped by a hash of the bits below it, as
+// adding the seed and xor-ing even multiples does (Laine and Karras 2011, Burley's constants 2020).
+inline uint32_t scrambleDigits(uint32_t digits, uint32_t seed) {
+    digits += seed;
+    digits ^= digits * 0x6C50B47Cu;
+    digits ^= digits * 0xB82F1E52u;
+    digits ^= digits * 0xC7AFE638u;
+    digits ^= digits * 0x8D22F6E6u;
+    return digits;
+}
+// A stream's own order of the sequence (Burley 2020): index's bits scrambled like a coordinate's
+// digits, from the top: the first 2^m indices map onto one aligned block of 2^m (a net) in a random
+// order. Two streams whose numbers meet in one path (bdpt's camera and light subpaths, a pixel and
+// ir's VPLs) must not draw the same point i: x_d(i) and y_d(i) would share i's digits and cluster
+// along a scrambled diagonal (bdpt's MSE falling as N^-0.7, not N^-1). Within blocks of 2^16
+// passes: fewer bits set, fewer columns to add up in sobolPoint.
+inline uint32_t shuffledIndex(uint32_t index, uint32_t seed) {
+    uint32_t low = reverseBits(scrambleDigits(reverseBits(index & 0xFFFFu), seed)) & 0xFFFFu;
+    return (index & ~0xFFFFu) | low;
+}
+// Coordinate d of point `index`, its digits scrambled by `seed`, as a fraction of 24 digits: the
+// definition above, word for word. Below, the same numbers fast (a point's 32 coordinates at once,
+// the seeds composed at compile time); test_sampler holds the two equal.
+inline float sobolSample(uint32_t index, uint32_t d, uint32_t seed) {
+    uint32_t digits = 0;
+    for (uint32_t k = 0; k < 32; ++k)
+        if ((index >> k) & 1) digits ^= kSobol.column[k][d];  // x_d(i) = C_d i
+    return float(reverseBits(scrambleDigits(digits, seed)) >> 8) * 0x1p-24f;
+}
+// -- Fast: the same numbers as sobolSample (test_sampler holds them equal), for every path's
 // first 32 dimensions: the xor of columns done four dimensions per instruction, the per-dimension
 // scramble seeds composed at compile time, the bit reversal by a table.
 // Dimension d's scramble seed: step d+1 of an LCG from the stream's key, the steps composed at compile time.
@@ -4167,4 +4145,62 @@ inline void Rng::scrambleCoordinates(uint32_t first) {
         uint32_t seed = uint32_t((jump.mul * scrambleKey + jump.add) >> 32);
         point[d] = fractionDigits(scrambled ? scrambleDigits(point[d], seed) : point[d]);
     }
+}
+
+// == Appendix D. vcm's hash grid ==============================================================
+// Section 8 (g)'s HashGrid: cells of side 2r hashed into a power of two of buckets, the records
+// sorted by bucket (a counting sort), a query visiting the at most 8 buckets its sphere overlaps.
+inline int64_t gridCell(const HashGrid& g, float x) { return int64_t(std::floor(x * g.cellsPerUnit)); }
+inline uint32_t gridBucket(const HashGrid& g, int64_t x, int64_t y, int64_t z) {
+    return (uint32_t(x) * 73856093u ^ uint32_t(y) * 19349663u ^ uint32_t(z) * 83492791u) & g.bucketMask;
+}
+
+// Builds the grid of `points`; returns the bucket order (the grid's record e is points[order[e]]).
+inline std::vector<uint32_t> buildHashGrid(HashGrid& g, const std::vector<Vec3>& points, float radius) {
+    g.radius = radius;
+    g.cellsPerUnit = radius > 0 ? 0.5f / radius : 0;
+    size_t buckets = 1;
+    while (buckets < points.size()) buckets *= 2;
+    g.bucketMask = uint32_t(buckets - 1);
+    g.bucketStart.assign(buckets + 1, 0);
+    std::vector<uint32_t> bucket(points.size()), order(points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+        Vec3 p = points[i];
+        ++g.bucketStart[(bucket[i] = gridBucket(g, gridCell(g, p.x), gridCell(g, p.y), gridCell(g, p.z))) + 1];
+    }
+    for (size_t b = 1; b < g.bucketStart.size(); ++b) g.bucketStart[b] += g.bucketStart[b - 1];
+    std::vector<uint32_t> fill(g.bucketStart.begin(), g.bucketStart.end() - 1);
+    for (size_t i = 0; i < points.size(); ++i) order[fill[bucket[i]]++] = uint32_t(i);
+    return order;
+}
+
+// Calls visit(e), in a fixed order, for every record e (in bucket order, with its point .p) within r of p.
+template <class Record, class Visit>
+inline void forEachNeighbour(const HashGrid& g, const std::vector<Record>& records, Vec3 p, Visit&& visit) {
+    if (records.empty()) return;
+    const float r2 = g.radius * g.radius;
+    // The cells of p - r and p + r on each axis (at most 3 apart by rounding), as the build computes them.
+    int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = gridCell(g, p[a] - g.radius), hi[a] = gridCell(g, p[a] + g.radius);
+    uint32_t buckets[27], begin[27], end[27];  // 8 unless rounding puts p - r and p + r three cells apart
+    int count = 0;
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+        for (int64_t y = lo[1]; y <= hi[1]; ++y)
+            for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+                uint32_t b = gridBucket(g, x, y, z);
+                if (std::find(buckets, buckets + count, b) != buckets + count) continue;
+                buckets[count++] = b;
+                __builtin_prefetch(&g.bucketStart[b]);
+            }
+    // Each bucket is two cache misses: asked for all at once, they overlap (two misses, not sixteen).
+    for (int i = 0; i < count; ++i) {
+        begin[i] = g.bucketStart[buckets[i]];
+        end[i] = g.bucketStart[buckets[i] + 1];
+        if (begin[i] < end[i]) __builtin_prefetch(&records[begin[i]]);
+    }
+    for (int i = 0; i < count; ++i)
+        for (uint32_t e = begin[i]; e < end[i]; ++e) {
+            Vec3 d = records[e].p - p;
+            if (dot(d, d) <= r2) visit(e);
+        }
 }

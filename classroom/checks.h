@@ -21,6 +21,16 @@ inline Scene loadSceneOrGuess(const std::string& path) {
     return loadScene(path);
 }
 
+// Why a folder cannot be made: the first part of it that is a file, or the system's reason.
+inline std::string folderProblem(const std::string& path, int reason = errno) {  // reason: mkdir's, before stat overwrites errno
+    for (size_t i = 1; i <= path.size(); ++i) {
+        if (i < path.size() && path[i] != '/') continue;
+        struct stat st;
+        if (stat(path.substr(0, i).c_str(), &st) == 0 && !S_ISDIR(st.st_mode)) return path.substr(0, i) + " is a file";
+    }
+    return std::strerror(reason);
+}
+
 // Why a file cannot be written at path ("" if it can): checked before any work, so that a long
 // render never ends in "cannot write".
 inline std::string unwritable(const std::string& path) {

@@ -116,7 +116,7 @@ inline int runImageTool(const ClassroomLine& cl, std::ostream& out, std::ostream
 // What a method adds to the summary line: vcm's radius and light vertices (counted over the passes
 // by the classroom), then the lecture's methodSummary (the chains' b and acceptance, the clamp).
 inline void printMethodSummary(const ClassroomLine& cl, const Scene& scene, const RenderResult& r, const VcmTotals& vcm, std::ostream& out) {
-    if (cl.opt.method == Method::VCM) out << vcmSummary(scene, cl.opt, r.passes, vcm);
+    if (cl.opt.method == Method::VCM) out << vcmSummary(scene, r.passes, vcm);
     out << methodSummary(cl.opt, r.method.metropolis, r.clampRemoved());
 }
 

@@ -103,11 +103,15 @@ inline std::string fileStem(const std::string& path) {  // "build/notes/pool-lt.
     return slash == std::string::npos ? name : name.substr(slash + 1);
 }
 
-// vcm's light vertices over the passes: the most one pass held, and how many in all.
+// vcm's passes as they ran: the radius of the first and the last, the most memory one held, and
+// how many light vertices in all.
 struct VcmTotals {
+    float firstRadius = -1, lastRadius = 0;
     size_t mostBytes = 0;
     long long lightVertices = 0, mergeable = 0;
     void add(const VcmPass& vp) {
+        if (firstRadius < 0) firstRadius = vp.radius;
+        lastRadius = vp.radius;
         size_t bytes = vp.paths.capacity() * sizeof(Subpath) + vp.stored.capacity() * sizeof(VcmPass::Stored) +
                        vp.grid.bucketStart.capacity() * sizeof(uint32_t);
         for (const std::vector<PathVertex>& row : vp.rowVertices) {
@@ -121,12 +125,12 @@ struct VcmTotals {
 
 // vcm's line of the summary: the radius of the first and the last pass, the light vertices per
 // pixel and pass (and how many were mergeable), the most memory one pass held.
-inline std::string vcmSummary(const Scene& scene, const RenderOptions& opt, int passes, const VcmTotals& vcm) {
+inline std::string vcmSummary(const Scene& scene, int passes, const VcmTotals& vcm) {
     const double pixelPasses = double(passes) * scene.camera.width * scene.camera.height;
     char text[256];
     std::snprintf(text, sizeof text, "vcm: radius %g in pass 1, %g in pass %d; %.1f light vertices per pixel and pass, %.1f of them "
-                  "mergeable; light subpaths and grid %.1f MB (%.0f bytes per light vertex)\n", mergeRadius(scene, opt, 0),
-                  mergeRadius(scene, opt, passes - 1), passes, vcm.lightVertices / pixelPasses, vcm.mergeable / pixelPasses,
+                  "mergeable; light subpaths and grid %.1f MB (%.0f bytes per light vertex)\n", vcm.firstRadius,
+                  vcm.lastRadius, passes, vcm.lightVertices / pixelPasses, vcm.mergeable / pixelPasses,
                   vcm.mostBytes / 1e6, vcm.mostBytes * double(passes) / std::max(1.0, double(vcm.lightVertices)));
     return text;
 }

@@ -1,6 +1,7 @@
 // classroom/options.h: the classroom's command line: the lecture's table with the tools' rows
 // among its own, did-you-mean, the combinations it refuses, and a run's label in the charts.
 #pragma once
+#include <deque>
 #include "lecture.h"
 
 // The command line with the tools' options besides the lecture's.
@@ -117,13 +118,24 @@ inline std::map<std::string, std::vector<OptionRow<CR>>> toolRows() {
 }
 
 
-// The lecture's table (its help texts as they are) with the tools' rows among its own, and the exit
-// statuses with the tools'.
+// What an option does more in ./bdpt than in the lecture's program: said after the lecture's words.
+inline const std::map<std::string, std::string>& classroomAdditions() {
+    static const std::map<std::string, std::string> more = {
+        {"--radius", ": the summary line reports both"},
+        {"--strategies", ",\nand two pyramid montages (each row brightened by the stops in its tiles'\nlabels)"},
+        {"--quiet", ", and no progress bar"}};
+    return more;
+}
+
+// The lecture's table (its help texts, with ./bdpt's additions) with the tools' rows among its own,
+// and the exit statuses with the tools'.
 inline std::vector<OptionRow<CR>> classroomOptions() {
     const std::map<std::string, std::vector<OptionRow<CR>>> tools = toolRows();
+    static std::deque<std::string> helps;  // the texts the rows point to (a deque does not move them)
     std::vector<OptionRow<CR>> table;
     for (const OptionRow<CommandLine>& o : kOptions) {
         OptionRow<CR> row{o.name, o.value, o.methods, o.whose, o.help, nullptr};
+        if (o.name && classroomAdditions().count(o.name)) row.help = helps.emplace_back(std::string(o.help) + classroomAdditions().at(o.name)).c_str();
         if (o.apply) row.apply = [lecture = o.apply](CR& cl, A& a) { lecture(cl, a); };
         if (!o.name && std::string(o.help).rfind("Exit status", 0) == 0)
             row.help = "Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene\n"

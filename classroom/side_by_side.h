@@ -25,12 +25,11 @@ struct SideBySidePanel {
 // The slides' captions of "Results from Different Techniques", for the entries that are exactly
 // the methods they name.
 inline std::string slideCaption(const std::string& entry) {
-    static const std::map<std::string, std::string> captions = {
-        {"pt", "(a) Unidirectional (eye tracing)"}, {"nee", "(b) Unidirectional + next event"},
-        {"lt", "(c) Next event (light tracing)"},   {"ir", "(d) Instant radiosity"},
-        {"bdpt", "(f) Bidirectional path tracing"}, {"nee --mis", "(b) Unidirectional + next event, with MIS"},
-        {"vcm", "Vertex Connection and Merging (VCM, later)"}, {"mlt", "Metropolis-Sampling (see later): Veach's mlt"},
-        {"pssmlt", "Metropolis-Sampling (see later): pssmlt"}, {"mmlt", "Metropolis-Sampling (see later): mmlt"}};
+    static const std::map<std::string, std::string> captions = [] {
+        std::map<std::string, std::string> m = {{"nee --mis", std::string(kMethodCaptions[int(Method::NEE)].caption) + ", with MIS"}};
+        for (int i = 0; i < int(std::size(kMethodNames)); ++i) m[kMethodNames[i]] = kMethodCaptions[i].caption;  // bdpt.cpp's table
+        return m;
+    }();
     if (entry.rfind("ir --clamp ", 0) == 0 && entry.find(' ', 11) == std::string::npos) return "(e) Instant radiosity (clamped)";
     // A method keeps its caption with its own budget or seed; a later one with options that tune
     // it but do not change what it is.
@@ -48,13 +47,22 @@ inline std::string slideCaption(const std::string& entry) {
 }
 
 // The slides' captions belong to the slides' comparison: a figure of at least three methods the
-// slides caption differently. On another (two methods, one method's variants) a letter (b) or (c)
-// would point to a panel the figure does not have: the entry itself is the caption.
-inline bool showsTheSlidesPanels(const std::vector<std::unique_ptr<SideBySidePanel>>& panels) {
-    std::set<std::string> captions;
-    for (auto& panel : panels)
-        if (!slideCaption(panel->label).empty()) captions.insert(slideCaption(panel->label));
-    return captions.size() >= 3;
+// slides caption differently. A letter (a)-(f) points to a panel of "Results from Different
+// Techniques", so it is drawn only where the figure has three of them; elsewhere (pt and bdpt
+// beside vcm, one method's variants) the entry itself is the caption.
+inline std::vector<std::string> slidesCaptions(const std::vector<std::unique_ptr<SideBySidePanel>>& panels) {
+    std::set<std::string> captions, lettered;
+    for (auto& panel : panels) {
+        const std::string c = slideCaption(panel->label);
+        if (!c.empty()) captions.insert(c);
+        if (c.rfind("(", 0) == 0) lettered.insert(c);
+    }
+    std::vector<std::string> out;
+    for (auto& panel : panels) {
+        const std::string c = slideCaption(panel->label);
+        out.push_back(captions.size() < 3 || (c.rfind("(", 0) == 0 && lettered.size() < 3) ? "" : c);
+    }
+    return out;
 }
 
 // The figure for a projector: a title over the panels, each panel's caption under its own image,
@@ -169,7 +177,8 @@ inline bool comparesDeliberateMistake(const std::vector<std::unique_ptr<SideBySi
 inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<SideBySidePanel>>& panels, const Image& ref,
                                                   const SideBySideLayout& L, const std::vector<std::string>& title, const std::string& ratioKind) {
     std::vector<unsigned char> canvas(size_t(L.canvasW) * L.canvasH * 3, 24);
-    const bool comparesMistake = comparesDeliberateMistake(panels), slides = showsTheSlidesPanels(panels);
+    const bool comparesMistake = comparesDeliberateMistake(panels);
+    const std::vector<std::string> slides = slidesCaptions(panels);
     auto caption = [&](int tile, int line, const std::string& text) {
         drawLabel(canvas, L.canvasW, L.canvasH, L.tileX(tile), L.tileY(tile) + L.panelH + L.gap / 2 + line * 7 * L.scale, text, L.scale);
     };
@@ -180,7 +189,7 @@ inline std::vector<unsigned char> sideBySideFrame(std::vector<std::unique_ptr<Si
         double seconds;
         panelMean(panel, mean, nullptr, passes, seconds);
         blitZoomed(canvas, L.canvasW, toSRGBBytes(mean, panel.cl.exposure), L.W, L.H, L.zoom, L.tileX(int(i)), L.tileY(int(i)));
-        const std::string slide = !ratioKind.empty() && comparesMistake ? (i == 0 ? "right" : "deliberate mistake") : slides ? slideCaption(panel.label) : "";
+        const std::string slide = !ratioKind.empty() && comparesMistake ? (i == 0 ? "right" : "deliberate mistake") : slides[i];
         std::string counts = passes > 0 ? std::to_string(passes) + " spp, " + threeDigits(seconds) + " CPU s" : "starting";
         caption(int(i), 0, slide.empty() ? panel.label : slide);
         caption(int(i), 1, slide.empty() ? counts : panel.label + ": " + counts);

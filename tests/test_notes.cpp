@@ -733,6 +733,8 @@ static std::vector<Quote> efficiencyQuotes() {
                 ") and pssmlt reaches " + e("door", "pssmlt")},
         {p10, col("indirect", "bdpt", mse) + " for balance, " + col("indirect", "bdpt --heuristic power", mse) + " power, " +
                    col("indirect", "bdpt --heuristic max", mse) + " max and " + col("indirect", "bdpt --heuristic uniform", mse) + " uniform"},
+        {p10, "balance's MSE is " + col("indirect", "bdpt", mse) + " against power's " + col("indirect", "bdpt --heuristic power", mse) + ", max's " +
+                   col("indirect", "bdpt --heuristic max", mse) + " and uniform's " + col("indirect", "bdpt --heuristic uniform", mse)},
         // numbers derived from the table: ratios of its cells
         {a, "bdpt's MSE is " + ratio("%.2fx", "cornell", "bdpt", "nee --mis", mse) + " nee's"},
         {a, "a sample costing " + ratio("%.2fx", "cornell", "vcm", "bdpt", cpu) + " and " + ratio("%.2fx", "indirect", "vcm", "bdpt", cpu) + " bdpt's here"},
@@ -750,7 +752,7 @@ static std::vector<Quote> efficiencyQuotes() {
         {a, "its MSE is " + ratio("%.0fx", "sds-ior1", "bdpt", "vcm", mse) + " below bdpt's"},
         {p15, "vcm's MSE is " + ratio("%.2fx", "glass-box", "vcm", "nee", mse) + " nee's, bdpt's " + ratio("%.2fx", "glass-box", "bdpt", "nee", mse)},
         {p15, "vcm's MSE is " + ratio("%.0fx", "sds-ior1", "bdpt", "vcm", mse) + " below bdpt's"},
-        {a, "its MSE at equal mutations is " + ratio("%.0f", "cornell", "mmlt", "pssmlt", mse) + " to " +
+        {a, "its MSE at equal mutations is " + ratio("%.1f", "cornell", "mmlt", "pssmlt", mse) + " to " +
                    ratio("%.0f", "glass-box", "mmlt", "pssmlt", mse) + " times pssmlt's"},
         {a, "its MSE is " + ratio("%.2fx", "door", "pssmlt", "bdpt", mse) + " bdpt's"},
         {a, "a mutation costs " + ratio("%.1fx", "door", "pssmlt", "bdpt", cpu) + " a bdpt sample there"},
@@ -826,7 +828,10 @@ static std::vector<Quote> failureQuotes() {
         {a, "(" + bias("cornell", "ir --clamp") + " on cornell, where at 4 s the noise still dominates, slope " + slope("cornell", "ir --clamp") +
                  "; " + bias("indirect", "ir --clamp") + " on indirect"},
         {a, "from the ceiling, slope " + slope("indirect", "ir --clamp") + ")"},
-        {a, "(cornell: mlt " + slope("cornell", "mlt") + ", mmlt " + slope("cornell", "mmlt") + ")"},
+        {a, "(from " + slope("refraction", "mmlt") + " on `refraction` to " + slope("furnace", "mmlt") + " in the furnace and " + slope("sds", "mmlt") +
+                   " on `sds`; mlt " + slope("cornell", "mlt") + " on cornell)"},
+        {a, "on `door`, pt's " + bias("door", "pt") + " (slope " + slope("door", "pt") + ") and unclamped ir's " + bias("door", "ir") + " (slope " +
+                   slope("door", "ir") + ")"},
         {a, "the slopes on cornell-glass are " + slope("cornell-glass", "pssmlt") + " (pssmlt), " + slope("cornell-glass", "mmlt") +
                    " (mmlt) and " + slope("cornell-glass", "mlt") + " (mlt)"},
         {a, "where bdpt's is " + slope("cornell-glass", "bdpt balance")},
@@ -868,7 +873,7 @@ static std::vector<Quote> estimatorQuotes() {
         smallest = std::min(smallest, 1 / relative);
         largest = std::max(largest, 1 / relative);
     }
-    texts.push_back(text("%.1f%%", 100 / largest) + " to " + text("%.0f%%", 100 / smallest) + " of the best width");
+    texts.push_back(text("%.2f%%", 100 / largest) + " to " + text("%.2f%%", 100 / smallest) + " of the best width");
     texts.push_back("B and C tie within " + text("%.2f%%", 100 * std::fabs(paths[78].p[1] / paths[78].p[2] - 1)));
     texts.push_back("f/p_A is " + text("%.0f", smallest) + " to " + text("%.0f", largest) + " times the widest one's");
     std::vector<Quote> quotes;
@@ -924,7 +929,8 @@ static std::vector<RunQuote> runQuoteTable() {
         {p12, {example, example + " || --method bdpt --spp 16"}, "--seed", seeds,
          {"relMSE {0.relmse:%.2f:min}-{0.relmse:%.2f:max} for pt against {1.relmse:%.4f:min}-{1.relmse:%.4f:max} for bdpt, about 50 times "
           "lower. The RMSE differs less ({0.rmse:%.3f:min}-{0.rmse:%.3f:max} against {1.rmse:%.3f:min}-{1.rmse:%.3f:max})",
-          "(`rmse_without_lamp`) bdpt's is {1.rmse_without_lamp:%.4f:min}-{1.rmse_without_lamp:%.4f:max}"}},
+          "(`rmse_without_lamp`, the figure the page's panels show first) pt's is {0.rmse_without_lamp:%.4f:min}-{0.rmse_without_lamp:%.4f:max} "
+          "and bdpt's is {1.rmse_without_lamp:%.4f:min}-{1.rmse_without_lamp:%.4f:max}"}},
         {p12, {"./bdpt scenes/sds.scene --method pt --res 64x64 --spp 64 --out build/notes/sds-pt.png"}, "--method", {"pt", "bdpt"},
          {"bdpt's rays ({0.rays:%.2f:0} against {0.rays:%.2f:1} per sample)"}},
         {p12, {"./bdpt scenes/cornell.scene --method pt --spp 4 --res 256x256 --out build/notes/rays.png"}, "--method", {"pt", "nee", "lt", "bdpt"},
@@ -958,14 +964,16 @@ static std::vector<RunQuote> runQuoteTable() {
           "the image mean is only {1.ratio:%.3f} times nee's, but locally the error is far larger: {1.ratio_apart:%.0f}% of the blocks are more "
           "than half a stop off, and the 95th percentile of the ratio is {1.ratio_p95:%.2f}"}, true},
         {p17, {bidir, bidir + " || !--mutations"}, "", {},
-         {"(`rmse_without_lamp` {0.rmse_without_lamp:%.4g} with `bidir` alone against {1.rmse_without_lamp:%.4g} with all four, seed 1)"}},
+         // three digits: in the page a chain may take another turn in the last bits of cosf
+         {"(`rmse_without_lamp` {0.rmse_without_lamp:%.3g} with `bidir` alone against {1.rmse_without_lamp:%.3g} with all four, seed 1)"}},
         {p13, {"./bdpt scenes/energy-generator.scene --method nee --spp 64 --out build/notes/energy-60.png",
                "./bdpt build/energy-20.scene --method nee --spp 64 --out build/notes/energy-20.png"}, "", {},
          {"the image mean halves ({0.mean:%.4g} -> {1.mean:%.4g})"}},
         {p15, {"./bdpt scenes/cornell.scene --method vcm --spp 1 --res 256x256 --out build/notes/vcm-memory.png"}, "", {},
          {"256x256, {0.light_vertices:%.1f} light vertices per pixel, {0.vcm_bytes:%.0f} bytes each", "{0.vcm_mb:%.1f} MB; bdpt keeps"}},
         {p15, {radius, radius + " || --alpha 1"}, "--radius", {"0.07", "0.14", "0.28"},
-         {"(RMSE {0.rmse:%.4g:0}, {0.rmse:%.4g:1}, {0.rmse:%.4g:2} at the default alpha; {1.rmse:%.4g:0}, {1.rmse:%.4g:1}, {1.rmse:%.4g:2} at `--alpha 1`)"}},
+         // three digits: the page's vcm sums its merges in another order, and its last digit may differ
+         {"(RMSE {0.rmse:%.3g:0}, {0.rmse:%.3g:1}, {0.rmse:%.3g:2} at the default alpha; {1.rmse:%.3g:0}, {1.rmse:%.3g:1}, {1.rmse:%.3g:2} at `--alpha 1`)"}},
         {p15, {door}, "--radius", {"3", "15", "30"},
          {"(the image mean {0.bias:%+.2f:0}% at r = 3, {0.bias:%+.2f:1}% at 15, {0.bias:%+.2f:2}% at 30)"}},
         {p14, {"./bdpt --ratio build/notes/pool-mistake-4-lt.pfm build/notes/pool-mistake-3-lt.pfm --out build/notes/pool-lt-ratio.png"}, "", {},
@@ -1198,6 +1206,11 @@ static std::vector<Quote> notMeasured() {
         {"10m-mirrors-and-glass.md", "the factor 1.33^2 cos_water"},
         {"06-extending-paths.md", "pt's 1.77x darker, lt's 1.77x brighter"},
         {"06-extending-paths.md", "to 1.0 and render"},
+        {"06-extending-paths.md", "hangs 0.5 mm above a floor"},  // the scene's own coordinates
+        // page 7's exercise 4: arithmetic on the worked path's printed table
+        {"07-probabilities.md", "(the lamp's centre is (278, 548.7, 279.5))"},
+        {"07-probabilities.md", "by x_1's ratio 1.237, s = 3 further by x_2's 1.076 (1.331), s = 0 divides by x_0's 122.6 (0.008157)"},
+        {"07-probabilities.md", "1 / (1 + 0.008157^2 + 1.237^2 + 1.331^2) = 1 / 4.302 = 0.2325: the table's 0.2324"},
         {"13-shading-normals.md", "albedo 0.8"},
         {"13-shading-normals.md", "ratio at most 0.8"},
         {"13-shading-normals.md", "the albedo, 0.80"},
@@ -1217,7 +1230,9 @@ static std::vector<Quote> notMeasured() {
         {"15-vertex-merging.md", "n^-0.375"},
         {"15-vertex-merging.md", "tell -0.375 from"},
         {"15-vertex-merging.md", "pi 0.07^2 x 24576 = 378"},
-        {"15-vertex-merging.md", "At r = 0.14, exercise 2's radius"},
+        {"15-vertex-merging.md", "At 192x128, r = 0.14 (two pixels there) gives 8"},
+        {"15-vertex-merging.md", "where 0.14 is about one pixel, the ratio is 1.4"},
+        {"13-shading-normals.md", "0.75 at 60 degrees, 0.97 at 20"},  // (1 + cos alpha) / 2
         // parameters: the renderer's defaults, Veach's and the exercises' settings
         {"09-russian-roulette-and-sampling.md", "q = min(0.95,"},
         {"15-vertex-merging.md", "default 0.75;"},
@@ -1242,6 +1257,7 @@ static std::vector<Quote> notMeasured() {
         {"appendix-a-speed-and-accuracy.md", "at 1.5 s a run"},
         {"appendix-a-speed-and-accuracy.md", "(about -0.5 where"},
         {"appendix-a-speed-and-accuracy.md", "(slope near -0.5,"},
+        {"appendix-a-speed-and-accuracy.md", "A bias beside a slope near -0.5 is noise"},
         {"appendix-a-speed-and-accuracy.md", "a slope far from -0.5"},
         {"appendix-a-speed-and-accuracy.md", "(slope 0, bias -100.0%)"},
         {"appendix-a-speed-and-accuracy.md", "predicts n^-0.375"},
@@ -1278,7 +1294,12 @@ static std::vector<Quote> referenceQuotes() {
     auto text = [](const char* format, double v) { char b[32]; std::snprintf(b, sizeof b, format, v); return std::string(b); };
     const std::string a = "appendix-a-speed-and-accuracy.md";
     double added = std::sqrt(1 + 1 / (low * low));
+    std::string sds;  // page 12's caption: vcm's curve on sds ends this many times above the reference's noise
+    for (const auto& cells : tableRows("lecture_notes/figures/reference-check.md"))
+        if (cells.size() > 1 && cells.front().find("sds") == 0 && cells.front().size() == 3) sds = cells.back();
+    REQUIRE(!sds.empty());
     return {
+        {"12-comparison-with-path-tracing.md", "vcm's ends " + sds + " times above it"},
         {a, text("%.1fx", low) + " to " + text("%.1fx", high)},
         {a, "adds at most " + text("%.1f%%", 100 * (added - 1)) + " to a charted RMSE (errors add in squares: sqrt(1 + 1/" + text("%.1f", low) + "^2) = " +
                 text("%.3f", added) + ")"},
@@ -1335,6 +1356,7 @@ static std::vector<Quote> measuredQuotes() {
         {p13, "the power ratio falls from " + text("%.2f", at60) + " to " + text("%.2f", at20)},
         {p13, text("%.2f", at60) + " / (0.8 x 7.4) = " + text("%.2f", at60 / (0.8 * 7.4)) + " at 60 degrees, " + text("%.2f", at20) +
                   " / (0.8 x 3.7) = " + text("%.2f", at20 / (0.8 * 3.7))},
+        {p13, "lowers these to the measured " + text("%.2f", at60 / (0.8 * 7.4)) + " and " + text("%.2f", at20 / (0.8 * 3.7))},
     };
 }
 

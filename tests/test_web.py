@@ -680,8 +680,16 @@ def numbers_shown(browser):
     page = re.search(r"clamp 1e-05 removed ([0-9.]+)% of the energy", by["ir --clamp 1e-5"]["stats"])
     check(clamp and page and abs(float(clamp.group(1)) - float(page.group(1))) < 0.01, "ir --clamp's panel: the share of energy the clamp removed, ./bdpt's",
           "./bdpt %s; page %s" % (clamp and clamp.group(0), page and page.group(0)))
-    # 6: nee --mis is described by the heuristic estimateDirect() multiplies by in bdpt.cpp.
+    # Each method's description is bdpt.cpp's kMethodCaptions row (the one table --help and the
+    # side-by-side figures read too): its caption and what it does.
     source = open(os.path.join(ROOT, "bdpt.cpp")).read()
+    table = re.search(r"kMethodCaptions\[\] = \{(.*?)\n\};", source, re.S).group(1)
+    rows = re.findall(r'\{"([^"]*)", "([^"]*)", "([^"]*)"\}', table)
+    names = re.search(r"kMethodNames\[\] = \{([^}]*)\}", source).group(1).replace('"', "").replace(" ", "").split(",")
+    panels = browser.run("scenes/cornell.scene", names[:6], 1) + browser.run("scenes/cornell.scene", names[6:], 1)
+    wrong = [p["entry"] for p, (caption, what, _) in zip(panels, rows) if not p["what"].startswith(caption + ": " + what)]
+    check(len(rows) == 9 and not wrong, "each method's panel says its row of bdpt.cpp's kMethodCaptions", ", ".join(wrong))
+    # 6: nee --mis is described by the heuristic estimateDirect() multiplies by in bdpt.cpp.
     used = re.search(r"if \(mis && !lp\.deltaPosition\) contribution \*= (\w+)Heuristic\(", source).group(1)
     what = browser.run("scenes/cornell.scene", ["nee --mis"], 1)[0]["what"]
     check("%s heuristic" % used in what and "balance" not in what, "nee --mis: the page names the heuristic bdpt.cpp uses (%s)" % used, repr(what))

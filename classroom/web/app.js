@@ -9,24 +9,22 @@ const PYRAMID_LENGTH = 5;  // the pyramid's rows: paths up to 5 segments (page 1
 const COLOURS = ["#ff6b6b", "#4dabf7", "#51cf66", "#fcc419", "#cc5de8", "#e9ecef"];
 const $ = (id) => document.getElementById(id);
 
-// ---- what the page says about each method and each deliberate mistake (the slides' captions
-// (a)-(f) and the notes' pages)
+// ---- what the page says about each method and each deliberate mistake: a method's caption, what
+// it does and its notes pages come from bdpt.cpp's kMethodCaptions (with the first worker's
+// "ready"); the variants' sentences are the page's.
 const METHODS = {
-    pt: "(a) Unidirectional eye tracing: a path counts light only when it hits a lamp by chance (page 1).",
-    nee: "(b) Eye tracing with next event: at every diffuse hit a shadow ray to a point on a lamp (page 2).",
     "nee --mis": "(b) with MIS: next event and hitting the lamp combined by the power heuristic (pages 9, 10).",
-    lt: "(c) Light tracing: paths from the lamps, each hit joined to the camera; it cannot see a mirror or glass from the camera (page 2).",
-    ir: "(d) Instant radiosity: light paths stored as virtual point lights, gathered at the eye's first diffuse hit; bright blotches in corners (page 1).",
     "ir --clamp": "(e) Instant radiosity clamped: the blotches gone, and their energy with them: biased (page 1).",
-    bdpt: "(f) Bidirectional path tracing: every (s,t) strategy of a path, weighted by MIS, balance heuristic (pages 3-11).",
     "bdpt --heuristic power": "(f) with the power heuristic (exponent 2): the best strategy weighted more (page 10).",
     "bdpt --heuristic max": "(f) with the maximum heuristic: each path to its one best strategy (page 10).",
     "bdpt --heuristic uniform": "(f) with uniform weights 1/(number of strategies): unbiased, but the noise of every strategy (page 10).",
-    vcm: "Vertex connection and merging: bdpt plus merging an eye vertex with nearby light vertices, for L S D S E caustics; biased, consistent (page 15).",
-    pssmlt: "Metropolis on primary samples (Kelemen): a Markov chain mutates a bdpt path's random numbers (page 16).",
-    mmlt: "Multiplexed Metropolis: chains over the random numbers, the path length and the strategy (page 16).",
-    mlt: "Veach's Metropolis light transport: the chain mutates the paths themselves (page 17).",
 };
+function readCaptions(lines) {
+    for (const line of lines.trim().split("\n")) {
+        const [name, caption, what, pages] = line.split("\t");
+        METHODS[name] = `${caption}: ${what} (page${/-/.test(pages) ? "s" : ""} ${pages}).`;
+    }
+}
 // Which scenes show a mistake (a test on the scene's text), and what to look for: `look` says what
 // the mistake is, `on` what it does to this method on the scene that shows it best (scene).
 const hasSpecular = (text) => /^\s*material\s+\S+\s+(glass|mirror)\b/m.test(text);
@@ -263,6 +261,7 @@ function onWorkerMessage(slot, m) {
     if (m.type === "ready") {
         worker.isReady = true;
         $("help-text").textContent = m.help;
+        if (!METHODS.pt) { readCaptions(m.captions); describeEntries(); fillExamples(); }
         if (++state.ready === MAX_PANELS) { $("start").disabled = state.running; showStatus("Ready: choose a scene and methods (or a lesson under Show), then Start (Space)."); }
         return;
     }
@@ -467,8 +466,12 @@ function makeEntries() {
         div.querySelector("input").addEventListener("input", () => { describeEntries(); saveState(); });
         $("entries").append(div);
     });
+}
+// The entry fields' suggestions: every method and variant, and each mistake on its method.
+function fillExamples() {
     const examples = [...Object.keys(METHODS).map((k) => (k === "ir --clamp" ? "ir --clamp 1e-5" : k)),
                       ...Object.keys(MISTAKES).map((f) => ({ "--fixed-start": "pssmlt", "--delta-density-one": "bdpt", "--no-scramble": "nee --mis" }[f] || "lt") + " " + f)];
+    $("entry-examples").replaceChildren();
     for (const e of examples) {
         const o = document.createElement("option");
         o.value = e;

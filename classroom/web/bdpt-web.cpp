@@ -147,6 +147,17 @@ EMSCRIPTEN_KEEPALIVE const char* bdpt_check_scene(const char* text, const char* 
     }
 }
 
+// Each method's caption, what it does and the notes' pages (bdpt.cpp's kMethodCaptions), as
+// "name\tcaption\twhat\tpages" lines: the page describes its panels with them.
+EMSCRIPTEN_KEEPALIVE const char* bdpt_method_captions() {
+    std::string lines;
+    for (int m = 0; m < int(std::size(kMethodNames)); ++m) {
+        const MethodCaption& c = kMethodCaptions[m];
+        lines += std::string(kMethodNames[m]) + "\t" + c.caption + "\t" + c.what + "\t" + c.pages + "\n";
+    }
+    return returned(lines);
+}
+
 // The lecture program's --help: what an error's "(see --help)" points to.
 EMSCRIPTEN_KEEPALIVE const char* bdpt_help() { return returned(usage(kOptions)); }
 
@@ -260,7 +271,7 @@ EMSCRIPTEN_KEEPALIVE const char* bdpt_summary() {
     counted.rays = r.result.rays;
     counted.image.width = r.scene.camera.width, counted.image.height = r.scene.camera.height;
     std::string s = raysPerSample(counted) + "\n";
-    if (r.opt.method == Method::VCM) s += vcmSummary(r.scene, r.opt, r.result.passes, gPanel.vcm);
+    if (r.opt.method == Method::VCM) s += vcmSummary(r.scene, r.result.passes, gPanel.vcm);
     s += methodSummary(r.opt, r.storage.metropolis, r.result.clampRemoved());
     return returned(s);
 }

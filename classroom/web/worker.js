@@ -42,8 +42,9 @@ createBdpt().then((module) => {
         strategyImage: fn("bdpt_strategy_image", "number", ["number", "number"]),
         checkScene: fn("bdpt_check_scene", "string", ["string", "string"]),
         help: fn("bdpt_help", "string", []),
+        captions: fn("bdpt_method_captions", "string", []),
     };
-    postMessage({ type: "ready", help: api.help() });
+    postMessage({ type: "ready", help: api.help(), captions: api.captions() });
     for (const m of pending.splice(0)) onmessage({ data: m });
 });
 
