@@ -222,8 +222,8 @@ serve-web: web
 
 # make test-web: the page in headless Debian chromium, driven over its DevTools protocol
 # (python3-websocket): means against ./bdpt's, every method, a scene error, a pixel's strategies,
-# a screenshot (build/test-web/page.png).
-test-web: web bdpt build/bdpt-lecture
+# a screenshot (build/test-web/page.png); the path view's weights against build/worked-path's.
+test-web: web bdpt build/bdpt-lecture build/worked-path
 	/usr/bin/python3 tests/test_web.py
 
 # make bench-web: time per sample of the WebAssembly build (under Node, one thread) against

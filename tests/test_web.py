@@ -389,6 +389,13 @@ def mistakes_in_input(browser):
                               cwd=ROOT, capture_output=True, text=True).stderr.strip().replace(" (see --help)", "")
     check(panels[0]["error"].startswith(expected) and "did you mean --heuristic?" in expected and panels[1]["passes"] == 2,
           "a misspelt option: the panel shows ./bdpt's message with its did-you-mean, the next one renders", repr(panels[0]["error"]))
+    # Page 11's exercise 2: --strategy-length, which ./bdpt takes only with --strategies DIR, sets
+    # the pyramid's length in the page (fewer strategies than the default 5 segments record).
+    full = browser.run("scenes/sds.scene", ["bdpt --maxdepth 3"], 1)[0]
+    four = browser.run("scenes/sds.scene", ["bdpt --maxdepth 3 --strategy-length 4"], 1)[0]
+    check(not four["error"] and four["passes"] == 1 and 0 < four["strategies"] < full["strategies"]
+          and any("--strategy-length 4" in n for n in four["notes"]),
+          "an entry's --strategy-length: the panel renders and its pyramid stops at that length", "%d strategies (5 segments: %d), %r" % (four["strategies"], full["strategies"], four["notes"]))
     # A mistake on a scene that cannot show it is said so; on one that can, not.
     panels = browser.run("scenes/refraction.scene", ["lt", "lt --no-adjoint-correction"], 1)
     warned = any("cannot show" in n for n in panels[1]["notes"])

@@ -378,11 +378,15 @@ async function start() {
         panel.sceneName = name;
         if (scene && !sceneTextToUse) { endPanel(panel, `the page has no scene ${scene}: its scenes are scenes/*.scene and tests/energy-generator-flat.scene`); return; }
         warnAboutMistakes(panel, entry, sceneTextToUse, name);
-        // bdpt and vcm panels record their strategies for the pyramid (paths up to 5 segments).
-        panel.strategyLength = $("record-strategies").checked && /^(bdpt|vcm)\b/.test(entry) ? PYRAMID_LENGTH : 0;
+        // bdpt and vcm panels record their strategies for the pyramid (paths up to 5 segments, or
+        // the entry's --strategy-length, which ./bdpt takes only with --strategies DIR).
+        const asked = /(?:^|\s)--strategy-length\s+(\d+)/.exec(entry), recorded = asked ? Math.min(Number(asked[1]), PYRAMID_LENGTH) : PYRAMID_LENGTH;
+        const sent = asked ? entry.replace(/\s*--strategy-length\s+\d+/, "") : entry;
+        if (asked) panel.notes.push(`--strategy-length ${asked[1]}: the pyramid below records every strategy up to ${recorded} segments`);
+        panel.strategyLength = $("record-strategies").checked && /^(bdpt|vcm)\b/.test(entry) ? recorded : 0;
         const reference = referenceFor(panel, scene);
         state.workers[slot].lastMessage = performance.now();
-        state.workers[slot].postMessage({ type: "start", id: panel.id, sceneText: sceneTextToUse, sceneName: name, entry, width: opt.width, height: opt.height,
+        state.workers[slot].postMessage({ type: "start", id: panel.id, sceneText: sceneTextToUse, sceneName: name, entry: sent, width: opt.width, height: opt.height,
                                           seed: opt.seed, spp: opt.spp, seconds: opt.seconds, strategyLength: panel.strategyLength, ...reference });
     });
     // The pyramid shows the first bdpt or vcm panel in order until a click on another chooses it.
