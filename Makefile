@@ -142,7 +142,7 @@ help:
 	@echo "make run        render scenes/cornell.scene into build/cornell.png (seconds)"
 	@echo "Durations: wall-clock on an idle 2-core machine, CPU where said. Budgets (--time, the charts' runs) are CPU"
 	@echo "seconds: a busy machine gives the same figures, later."
-	@echo "make test       every test file, one line each (about 4 CPU minutes, 2.5 minutes); make test-sanitize (about 12 minutes)"
+	@echo "make test       every test file, one line each (about 4.5 CPU minutes, 3 minutes); make test-sanitize (about 12 minutes)"
 	@echo "make homework   a student's folder, build/homework/: bdpt.cpp with the tasks cut out, a README, make grade"
 	@echo "                (TASKS=\"H2 H5\": some; seconds, and 10 s the first time for the grader's data)"
 	@echo "make grade      grades build/homework/bdpt.cpp, or HOMEWORK=path/to/bdpt.cpp, by the physics (20 s)"
