@@ -29,7 +29,7 @@ endif
 TEST_FILES := $(wildcard tests/test_*.cpp)
 # ./bdpt is the lecture's renderer (bdpt.cpp) with the classroom's tools (classroom/), one compile.
 RENDERER := bdpt.cpp classroom/classroom.cpp $(wildcard classroom/*.h)
-TEST_HEADERS := tests/helpers.h tests/lecture_test.h tests/bench.h tests/rays.h classroom/workshop/workshop.h classroom/workshop/densities.h classroom/workshop/worked_path.h
+TEST_HEADERS := classroom/homework/physics.h tests/helpers.h tests/lecture_test.h tests/bench.h tests/rays.h classroom/workshop/workshop.h classroom/workshop/densities.h classroom/workshop/worked_path.h
 
 all: bdpt
 
@@ -311,7 +311,7 @@ clean:
 build/homework-tools/cut: classroom/homework/cut.cpp
 	@mkdir -p build/homework-tools
 	$(CXX) -O1 -std=c++17 -Wall -Wextra -o $@ $<
-build/homework-tools/grade-solution: classroom/homework/grade.cpp bdpt.cpp build/flags
+build/homework-tools/grade-solution: classroom/homework/grade.cpp classroom/homework/physics.h bdpt.cpp build/flags
 	@mkdir -p build/homework-tools
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 HOMEWORK_DATA_INPUTS := scenes/refs/cornell.pfm scenes/refs/cornell-point.pfm tests/refs/cornell-direct.pfm scenes/cornell.scene scenes/energy-generator.scene
@@ -328,7 +328,7 @@ homework: build/homework-tools/cut build/homework-data/numbers.txt
 	@build/homework-tools/cut classroom/homework/tasks bdpt.cpp $(HOMEWORK_DIR).tmp "$(TASKS)" | sed 's|$(HOMEWORK_DIR).tmp/|$(HOMEWORK_DIR)/|'
 	@cp scenes/*.scene $(HOMEWORK_DIR).tmp/scenes/
 	@cp -r lecture_notes $(HOMEWORK_DIR).tmp/
-	@cp classroom/homework/grade.cpp $(HOMEWORK_DIR).tmp/grader/
+	@cp classroom/homework/grade.cpp classroom/homework/physics.h $(HOMEWORK_DIR).tmp/grader/
 	@cp -r build/homework-data $(HOMEWORK_DIR).tmp/grader/data
 	@cp classroom/homework/Makefile.student $(HOMEWORK_DIR).tmp/Makefile
 	@cp $(HOMEWORK_DIR).tmp/bdpt.cpp $(HOMEWORK_DIR).tmp/grader/handed-out.cpp

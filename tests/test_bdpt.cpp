@@ -1,6 +1,7 @@
 // Bidirectional path tracing: MIS weights, agreement with the other methods, the per-strategy
 // images.
 #include "helpers.h"
+#include "classroom/homework/physics.h"
 
 // -- MIS weights sum to 1 ------------------------------------------------------------------
 // A full path x_0 (light) .. x_{n-1} (pinhole) made by a real bdpt connection is split again at
@@ -129,21 +130,6 @@ static double pathDensity(const Scene& scene, const std::vector<PathVertex>& x, 
     return (s > 0 ? subpathDensity(scene, x, 0, s - 1, roulette) : 1) * subpathDensity(scene, x, n - 1, s, roulette);
 }
 
-// Each heuristic's weight of strategy s by its definition, from the densities p of all the
-// strategies able to make the path: balance p_s / sum p, power p_s^2 / sum p^2, max 1 for the
-// largest (ties within 1e-4 share), uniform 1 / count.
-static double definitionWeight(Heuristic h, const std::map<int, double>& p, int s) {
-    double ps = p.at(s), sum = 0;
-    int larger = 0, equal = 0;
-    for (auto [i, pi] : p) {
-        sum += h == Heuristic::Power ? pi * pi : h == Heuristic::Uniform ? 1 : pi;
-        if (i == s) continue;
-        larger += pi / ps > 1 + 1e-4;
-        equal += std::fabs(pi / ps - 1) <= 1e-4;
-    }
-    if (h == Heuristic::Max) return larger ? 0 : 1.0 / (1 + equal);
-    return (h == Heuristic::Power ? ps * ps : h == Heuristic::Uniform ? 1 : ps) / sum;
-}
 
 // The weight that vcm's own merging code (mergeCameraVertices) gives the merge of the camera
 // subpath z's last vertex with vertex i of the light subpath y, both ending at one point: a pass of

@@ -13,6 +13,7 @@
 // there (the mistake's formula, integrated the same way), and names the one that fits.
 #define BDPT_NO_MAIN
 #include "bdpt.cpp"
+#include "physics.h"
 #include <csignal>
 #include <fcntl.h>
 #include <poll.h>
@@ -1118,20 +1119,6 @@ bool able(const Scene& sc, const std::vector<PathVertex>& x, int s) {
     b.type = s == int(x.size()) - 1 ? PathVertex::Camera : PathVertex::Surface;
     return !specularAt(sc, a) && !specularAt(sc, b);
 }
-// A heuristic's weight of strategy s by its definition: balance p_s / sum p, power p_s^2 / sum p^2,
-// max 1 for the largest (ties within 1e-4 share), uniform 1 / count.
-double definitionWeight(Heuristic h, const std::map<int, double>& p, int s) {
-    double ps = p.at(s), sum = 0;
-    int larger = 0, equal = 0;
-    for (auto [i, pi] : p) {
-        sum += h == Heuristic::Power ? pi * pi : h == Heuristic::Uniform ? 1 : pi;
-        if (i == s) continue;
-        larger += pi / ps > 1 + 1e-4;
-        equal += std::fabs(pi / ps - 1) <= 1e-4;
-    }
-    if (h == Heuristic::Max) return larger ? 0 : 1.0 / (1 + equal);
-    return (h == Heuristic::Power ? ps * ps : h == Heuristic::Uniform ? 1 : ps) / sum;
-}
 
 // The paths light[0..s-1] + camera[t-1..0] of samples' subpaths that carry light, found without
 // connectStrategy: s = 0 ends on an emitter's front; otherwise two connectable vertices whose
@@ -1376,51 +1363,8 @@ std::vector<Check> checksH5() {
 // 10th state visited, and the expected-value splats) against its closed form by chi-square.
 namespace grade {
 
-float target(float x, float y) { return std::exp(3 * x) * (1 + 8 * sqr(y - 0.5f)); }
-double targetIntegral(double x0, double x1, double y0, double y1) {
-    auto X = [](double x) { return std::exp(3 * x) / 3; };
-    auto Y = [](double y) { return y + 8 * std::pow(y - 0.5, 3) / 3; };
-    return (X(x1) - X(x0)) * (Y(y1) - Y(y0));
-}
-struct TargetRun {
-    double visited = 0, splatted = 0, acceptance = 0;
-};
-TargetRun runOnTarget(uint64_t seed) {
-    constexpr int kBins = 8, kSteps = 200000, kThin = 10;
-    RenderOptions opt;
-    PrimarySampleChain chain;
-    chain.rng = checkRng(seed, 0, 0);
-    auto evaluate = [&](PrimarySampleState& u) {
-        Rng numbers;
-        numbers.replay = &u.camera;
-        u.camera.used = 0;
-        u.camera.fresh = &chain.rng;
-        float x = numbers.uniform(), y = numbers.uniform();
-        u.f = target(x, y);
-        u.contributions.assign(1, {std::min(kBins - 1, int(x * kBins)) + kBins * std::min(kBins - 1, int(y * kBins)), Vec3(1)});
-    };
-    evaluate(chain.current);
-    std::vector<double> visited(kBins * kBins, 0), splatted(kBins * kBins, 0);
-    auto splat = [&](const PrimarySampleState& u, double weight) {
-        if (!u.contributions.empty()) splatted[size_t(u.contributions[0].pixel)] += weight * u.f;
-    };
-    for (int i = 0; i < kSteps; ++i) {
-        metropolisStep(opt, chain, evaluate, splat);
-        if (i % kThin == 0 && !chain.current.contributions.empty()) visited[size_t(chain.current.contributions[0].pixel)] += 1;
-    }
-    splat(chain.current, chain.currentWeight);
-    TargetRun run;
-    double total = targetIntegral(0, 1, 0, 1), samples = kSteps / kThin, splatTotal = 0;
-    for (double w : splatted) splatTotal += w;
-    for (int b = 0; b < kBins * kBins; ++b) {
-        double x0 = double(b % kBins) / kBins, y0 = double(b / kBins) / kBins;
-        double p = targetIntegral(x0, x0 + 1.0 / kBins, y0, y0 + 1.0 / kBins) / total;
-        run.visited += sqr(float(visited[size_t(b)] - samples * p)) / (samples * p);
-        run.splatted += splatTotal > 0 ? sqr(float(splatted[size_t(b)] / splatTotal * samples - samples * p)) / (samples * p) : 1e9;
-    }
-    run.acceptance = chain.proposed > 0 ? double(chain.accepted) / double(chain.proposed) : 0;
-    return run;
-}
+// The chain on physics.h's known target, with the renderer's default steps and the student's acceptance.
+TargetRun runOnTarget(uint64_t seed) { return runOnKnownTarget(RenderOptions(), checkRng(seed, 0, 0)); }
 
 Outcome acceptance() {
     struct Pair { float current, proposal; };
@@ -1444,16 +1388,16 @@ Outcome acceptance() {
 Outcome chainVisits() {
     TargetRun run = runOnTarget(7);
     // 63 degrees of freedom: about 63 +- 11 when the chain fits; a broken balance gives thousands
-    if (run.visited < 150) return {true, ""};
+    if (run.visitedChiSquare < 150) return {true, ""};
     return {false, "a chain on a known target (60 times brighter in one corner): the states it visits do not follow the target (chi-square " +
-                       num(run.visited, 4) + " over 64 bins, about 63 when they do; acceptance " + num(run.acceptance, 3) +
+                       num(run.visitedChiSquare, 4) + " over 64 bins, about 63 when they do; acceptance " + num(run.acceptance, 3) +
                        "): detailed balance needs a = min(1, f(y)/f(x)), the proposal made current when accepted (page 16)"};
 }
 
 Outcome chainSplats() {
     TargetRun run = runOnTarget(9);
-    if (run.splatted < 150) return {true, ""};
-    return {false, "a chain on a known target: its expected-value splats do not follow it (chi-square " + num(run.splatted, 4) +
+    if (run.splattedChiSquare < 150) return {true, ""};
+    return {false, "a chain on a known target: its expected-value splats do not follow it (chi-square " + num(run.splattedChiSquare, 4) +
                        " over 64 bins, about 63 when they do): the proposal gets a / f(y) and the current state (1 - a) / f(x), the latter "
                        "paid out when the chain leaves it (Kelemen et al.; page 16)"};
 }

@@ -267,7 +267,7 @@ TEST_CASE("the student's folder holds no line of a cut body, and the notes none 
     std::vector<std::string> cut = cutLines(results().solutionSource, handedOut);
     MESSAGE(cut.size() << " code lines cut from bdpt.cpp");
     CHECK(cut.size() > 60);
-    std::vector<std::string> files = {folder + "/bdpt.cpp", folder + "/README.md", folder + "/Makefile", folder + "/grader/grade.cpp",
+    std::vector<std::string> files = {folder + "/bdpt.cpp", folder + "/README.md", folder + "/Makefile", folder + "/grader/grade.cpp", folder + "/grader/physics.h",
                                       folder + "/grader/tasks.txt", folder + "/grader/handed-out.cpp"};
     DIR* notes = opendir("lecture_notes");
     for (dirent* e; notes && (e = readdir(notes));)
