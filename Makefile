@@ -29,7 +29,7 @@ endif
 TEST_FILES := $(wildcard tests/test_*.cpp)
 # ./bdpt is the lecture's renderer (bdpt.cpp) with the classroom's tools (classroom/), one compile.
 RENDERER := bdpt.cpp classroom/classroom.cpp $(wildcard classroom/*.h)
-TEST_HEADERS := classroom/homework/physics.h tests/helpers.h tests/lecture_test.h tests/bench.h tests/rays.h classroom/workshop/workshop.h classroom/workshop/densities.h classroom/workshop/worked_path.h
+TEST_HEADERS := classroom/physics.h tests/helpers.h tests/lecture_test.h tests/bench.h tests/rays.h classroom/workshop/workshop.h classroom/workshop/densities.h classroom/workshop/worked_path.h
 
 all: bdpt
 
@@ -311,9 +311,9 @@ clean:
 build/homework-tools/cut: classroom/homework/cut.cpp
 	@mkdir -p build/homework-tools
 	$(CXX) -O1 -std=c++17 -Wall -Wextra -o $@ $<
-build/homework-tools/grade-solution: classroom/homework/grade.cpp classroom/homework/physics.h bdpt.cpp build/flags
+build/homework-tools/grade-solution: classroom/homework/grade.cpp classroom/physics.h bdpt.cpp build/flags
 	@mkdir -p build/homework-tools
-	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
+	$(CXX) $(CXXFLAGS) -I. -Iclassroom -o $@ $< $(LDLIBS)
 HOMEWORK_DATA_INPUTS := scenes/refs/cornell.pfm scenes/refs/cornell-point.pfm tests/refs/cornell-direct.pfm scenes/cornell.scene scenes/energy-generator.scene
 build/homework-data/numbers.txt: build/homework-tools/grade-solution $(HOMEWORK_DATA_INPUTS)
 	@echo "make homework: the grader's data, rendered once by the complete renderer (about 10 seconds)"
@@ -328,7 +328,7 @@ homework: build/homework-tools/cut build/homework-data/numbers.txt
 	@build/homework-tools/cut classroom/homework/tasks bdpt.cpp $(HOMEWORK_DIR).tmp "$(TASKS)" | sed 's|$(HOMEWORK_DIR).tmp/|$(HOMEWORK_DIR)/|'
 	@cp scenes/*.scene $(HOMEWORK_DIR).tmp/scenes/
 	@cp -r lecture_notes $(HOMEWORK_DIR).tmp/
-	@cp classroom/homework/grade.cpp classroom/homework/physics.h $(HOMEWORK_DIR).tmp/grader/
+	@cp classroom/homework/grade.cpp classroom/physics.h $(HOMEWORK_DIR).tmp/grader/
 	@cp -r build/homework-data $(HOMEWORK_DIR).tmp/grader/data
 	@cp classroom/homework/Makefile.student $(HOMEWORK_DIR).tmp/Makefile
 	@cp $(HOMEWORK_DIR).tmp/bdpt.cpp $(HOMEWORK_DIR).tmp/grader/handed-out.cpp
@@ -338,7 +338,7 @@ grade: build/homework-tools/cut build/homework-data/numbers.txt
 	@test -f "$(HOMEWORK)" || { echo "make grade: no $(HOMEWORK) (make homework writes build/homework/; or make grade HOMEWORK=path/to/bdpt.cpp)"; exit 2; }
 	@mkdir -p build/homework-grade
 	@echo "make grade: compiling the grader with $(HOMEWORK) (about 15 seconds)"
-	@$(CXX) $(CXXFLAGS) -I$(dir $(HOMEWORK)) -o build/homework-grade/grade classroom/homework/grade.cpp $(LDLIBS) || \
+	@$(CXX) $(CXXFLAGS) -I$(dir $(HOMEWORK)) -Iclassroom -o build/homework-grade/grade classroom/homework/grade.cpp $(LDLIBS) || \
 	  { echo "make grade: $(HOMEWORK) does not compile with the grader (the compiler's first message above): no task is graded until it does"; exit 1; }
 	@if [ -f $(dir $(HOMEWORK))grader/tasks.txt ]; then cp $(dir $(HOMEWORK))grader/tasks.txt build/homework-grade/tasks.txt; \
 	  else build/homework-tools/cut classroom/homework/tasks --list "$(TASKS)" > build/homework-grade/tasks.txt; fi

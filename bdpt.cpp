@@ -99,18 +99,19 @@ struct Rng {
         uint32_t shifted = uint32_t(((old >> 18u) ^ old) >> 27u), rot = uint32_t(old >> 59u);
         return (shifted >> rot) | (shifted << ((-rot) & 31));
     }
-    // Low-discrepancy mode (sampleRng sets it): the next number is coordinate `dimension` of a Sobol point.
+    // Low-discrepancy mode (sampleRng sets it): the next number is coordinate `dimension` of Sobol
+    // point `sobolIndex`, computed with the three after it when the first of the four is drawn.
     bool lowDiscrepancy = false, scrambled = true;
-    uint32_t dimension = 0;
+    uint32_t dimension = 0, sobolIndex = 0;
     uint64_t scrambleKey = 0;
-    uint32_t point[kLowDiscrepancyDimensions] = {};
-    inline void scrambleCoordinates(uint32_t first);
+    uint32_t block[4] = {};
+    inline void drawCoordinates(uint32_t first);
     // [0,1), 24 exact bits. Inlined always: every number of every method passes here.
     [[gnu::always_inline]] float uniform() {
         if (replay) return replayUniform(*replay);
         if (lowDiscrepancy && dimension < kLowDiscrepancyDimensions) {
-            if (dimension % 4 == 0 && dimension + 4 < kLowDiscrepancyDimensions) scrambleCoordinates(dimension + 4);
-            return float(point[dimension++]) * 0x1p-24f;
+            if (dimension % 4 == 0) drawCoordinates(dimension);
+            return float(block[dimension++ % 4]) * 0x1p-24f;
         }
         return float(nextUint() >> 8) * 0x1p-24f;
     }
@@ -133,9 +134,6 @@ inline Rng makeRng(uint64_t seed, uint64_t a, uint64_t b) {
 // (notes, page 9 and Appendix C). No slide needs its construction: appendix C, at the end.
 inline uint32_t shuffledIndex(uint32_t index, uint32_t seed);         // a stream's own order of the points
 inline float sobolSample(uint32_t index, uint32_t d, uint32_t seed);  // coordinate d, by the definition
-// Appendix C: point `index`'s unscrambled digits, all dimensions; the same cached per thread.
-inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]);
-inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]);
 // Orthonormal frame around a unit normal (Duff et al. 2017), to express BSDFs locally.
 struct Frame {
     Vec3 s, t, n;
@@ -803,9 +801,7 @@ inline Rng sampleRng(const SampleOptions& opt, uint64_t salt, uint64_t stream, u
     rng.lowDiscrepancy = true;
     rng.scrambled = !opt.noScramble;
     rng.scrambleKey = mix64(mix64(opt.seed ^ salt) + stream);
-    if (salt == kCameraStream) cachedSobolPoint(uint32_t(index), rng.point);
-    else sobolPoint(rng.scrambled ? shuffledIndex(uint32_t(index), uint32_t(rng.scrambleKey)) : uint32_t(index), rng.point);
-    rng.scrambleCoordinates(0);
+    rng.sobolIndex = salt == kCameraStream || !rng.scrambled ? uint32_t(index) : shuffledIndex(uint32_t(index), uint32_t(rng.scrambleKey));
     return rng;
 }
 
@@ -1350,7 +1346,7 @@ struct MisSum {
     Heuristic heuristic;
     double sum = 0;
     int larger = 0, equal = 0;
-    void add(double r, int /*s: which strategy*/ = 0, bool /*merge*/ = false) {
+    void add(double r) {
         constexpr double kTie = 1e-4;
         if (heuristic != Heuristic::Max) {
             sum += misPower(heuristic, r);
@@ -1365,14 +1361,15 @@ struct MisSum {
     }
 };
 
-// The walk: adds to m every other strategy able to make the path light[0..s-1] + camera[t-1..0]
-// met at `j`, as m.add(r, s') for strategy (s', s+t-s'), r relative to p_ref = p_{s,t} / r0 (r0 = 1
-// weighs (s,t) itself; a merge passes its own density relative to p_{s,t}). Moving vertex x to the
-// other side multiplies the density by pdfRev(x)/pdfFwd(x). Merges (vcm, mergeEta > 0): the merge
-// at x, once x has moved to the other side, has the density p * mergeEta * pdfFwd(x), with its own
-// subpath's pdfFwd: m.add(r, s', true), s' the light vertices up to x. m: a MisSum, or the page's list.
-template <class Sum>
-inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta, const Junction& j, double r0, Sum& m) {
+// The walk: adds to m the r_i of every other strategy able to make the path light[0..s-1] +
+// camera[t-1..0] met at `j`, r relative to p_ref = p_{s,t} / r0 (r0 = 1 weighs (s,t) itself; a
+// merge passes its own density relative to p_{s,t}). Moving vertex x to the other side multiplies
+// the density by pdfRev(x)/pdfFwd(x): the strategies (s+1, t-1), (s+2, t-2), ... one way and
+// (s-1, t+1), ... the other. Strategy (s', t') is left out where x_{s'-1} or x_{s'} is a delta
+// vertex (a mirror, glass, a point light's position): no connection is made there. Merges (vcm,
+// mergeEta > 0): the merge at x, once x has moved to the other side, has the density
+// p * mergeEta * pdfFwd(x), with its own subpath's pdfFwd.
+inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta, const Junction& j, double r0, MisSum& m) {
     auto cameraRev = [&](int i) { return i == t - 1 ? j.ptRev : i == t - 2 ? j.ptMinusRev : camera[i].pdfRev; };
     auto lightRev = [&](int i) { return i == s - 1 ? j.qsRev : i == s - 2 ? j.qsMinusRev : light[i].pdfRev; };
     // A connection is made only at non-delta vertices, whatever was sampled there afterwards.
@@ -1381,16 +1378,16 @@ inline void misWalk(Subpath light, int s, Subpath camera, int t, double mergeEta
     double r = r0;
     for (int i = t - 1; i > 0; --i) {  // more light vertices: strategies (s+1, t-1), ...
         r *= densityRatio(cameraRev(i), camera[i].pdfFwd);
-        if (!cameraDelta(i) && !cameraDelta(i - 1)) m.add(r, s + t - i);
+        if (!cameraDelta(i) && !cameraDelta(i - 1)) m.add(r);  // (s + t - i, i)
         bool becomesLightVertex0 = s == 0 && i == t - 1;  // the light's own vertex is not merged
-        if (mergeEta > 0 && !cameraDelta(i) && !becomesLightVertex0) m.add(r * mergeEta * camera[i].pdfFwd, s + t - i, true);
+        if (mergeEta > 0 && !cameraDelta(i) && !becomesLightVertex0) m.add(r * mergeEta * camera[i].pdfFwd);
     }
     r = r0;
     for (int i = s - 1; i >= 0; --i) {  // more camera vertices: strategies (s-1, t+1), ...
         r *= densityRatio(lightRev(i), light[i].pdfFwd);
         bool deltaBefore = i > 0 ? lightDelta(i - 1) : light[0].deltaPosition;
-        if (!lightDelta(i) && !deltaBefore) m.add(r, i);
-        if (mergeEta > 0 && i > 0 && !lightDelta(i)) m.add(r * mergeEta * light[i].pdfFwd, i + 1, true);
+        if (!lightDelta(i) && !deltaBefore) m.add(r);  // (i, s + t - i)
+        if (mergeEta > 0 && i > 0 && !lightDelta(i)) m.add(r * mergeEta * light[i].pdfFwd);
     }
 }
 
@@ -2946,6 +2943,23 @@ inline bool writePFM(const Image& img, const std::string& path) {
     return commitFile(tmp, path, ok);
 }
 
+// And back: false for a file that is not a whole PFM of this kind (a reference, a test's output).
+inline bool readPFM(const std::string& path, Image& img) {
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return false;
+    char magic[3] = {0};
+    int w = 0, h = 0;
+    float scale = 0;
+    bool ok = std::fscanf(f, "%2s %d %d %f", magic, &w, &h, &scale) == 4 && std::string(magic) == "PF" && w > 0 && h > 0 &&
+              w <= 16384 && h <= 16384 && scale < 0 && std::fgetc(f) != EOF;
+    if (ok) {
+        img = Image(w, h);
+        for (int y = h - 1; y >= 0 && ok; --y) ok = std::fread(&img.at(0, y), sizeof(Vec3), size_t(w), f) == size_t(w);
+    }
+    std::fclose(f);
+    return ok;
+}
+
 // PNG: sRGB bytes of the image scaled by 2^exposure.
 inline unsigned char toSRGB8(float linear) {
     float v = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
@@ -4066,14 +4080,14 @@ inline uint32_t scrambleDigits(uint32_t digits, uint32_t seed) {
 // order. Two streams whose numbers meet in one path (bdpt's camera and light subpaths, a pixel and
 // ir's VPLs) must not draw the same point i: x_d(i) and y_d(i) would share i's digits and cluster
 // along a scrambled diagonal (bdpt's MSE falling as N^-0.7, not N^-1). Within blocks of 2^16
-// passes: fewer bits set, fewer columns to add up in sobolPoint.
+// passes: fewer bits set, fewer columns to add up in drawCoordinates.
 inline uint32_t shuffledIndex(uint32_t index, uint32_t seed) {
     uint32_t low = reverseBits(scrambleDigits(reverseBits(index & 0xFFFFu), seed)) & 0xFFFFu;
     return (index & ~0xFFFFu) | low;
 }
 // Coordinate d of point `index`, its digits scrambled by `seed`, as a fraction of 24 digits: the
-// definition above, word for word. Below, the same numbers fast (a point's 32 coordinates at once,
-// the seeds composed at compile time); test_sampler holds the two equal.
+// definition above, word for word. Below, the same numbers fast (four coordinates at once, the
+// seeds composed at compile time); test_sampler holds the two equal.
 inline float sobolSample(uint32_t index, uint32_t d, uint32_t seed) {
     uint32_t digits = 0;
     for (uint32_t k = 0; k < 32; ++k)
@@ -4117,33 +4131,21 @@ inline uint32_t fractionDigits(uint32_t digits) {
     return uint32_t(r[digits & 255]) << 16 | uint32_t(r[(digits >> 8) & 255]) << 8 | r[(digits >> 16) & 255];
 }
 
-// Sample `index`'s point, unscrambled: the xor of C_d's columns picked by index's bits, four dimensions at once.
-inline void sobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
+// Coordinates first..first+3 of point sobolIndex: the xor of C_d's columns picked by the index's
+// bits, four dimensions per instruction, then each scrambled by its own seed (not with
+// --no-scramble, the mistake) and made a fraction. Only the blocks a path reaches are computed.
+inline void Rng::drawCoordinates(uint32_t first) {
     typedef uint32_t FourDimensions __attribute__((vector_size(16)));
-    FourDimensions point[kLowDiscrepancyDimensions / 4] = {};
-    for (uint32_t i = index; i; i &= i - 1) {  // bit k of index set: column k of every dimension
-        const uint32_t* column = kSobol.column[__builtin_ctz(i)];
-        for (uint32_t q = 0; q < kLowDiscrepancyDimensions / 4; ++q) {
-            FourDimensions c;
-            std::memcpy(&c, column + 4 * q, sizeof c);
-            point[q] ^= c;
-        }
+    FourDimensions digits = {};
+    for (uint32_t i = sobolIndex; i; i &= i - 1) {  // bit k of the index set: column k
+        FourDimensions c;
+        std::memcpy(&c, kSobol.column[__builtin_ctz(i)] + first, sizeof c);
+        digits ^= c;
     }
-    std::memcpy(digits, point, sizeof point);
-}
-// Every pixel's camera stream draws point `pass` in pass `pass`: each thread keeps the last.
-inline void cachedSobolPoint(uint32_t index, uint32_t (&digits)[kLowDiscrepancyDimensions]) {
-    thread_local uint32_t cachedIndex = ~0u, cached[kLowDiscrepancyDimensions];
-    if (index != cachedIndex) sobolPoint(index, cached), cachedIndex = index;
-    std::copy(cached, cached + kLowDiscrepancyDimensions, digits);
-}
-// Coordinates first..first+3, scrambled by their own seeds (not with --no-scramble, the mistake),
-// as fractions; uniform() asks for four at a time: four independent hashes overlap.
-inline void Rng::scrambleCoordinates(uint32_t first) {
-    for (uint32_t d = first; d < first + 4; ++d) {
-        const LcgJump& jump = kScrambleSeeds.step[d];
+    for (uint32_t q = 0; q < 4; ++q) {
+        const LcgJump& jump = kScrambleSeeds.step[first + q];
         uint32_t seed = uint32_t((jump.mul * scrambleKey + jump.add) >> 32);
-        point[d] = fractionDigits(scrambled ? scrambleDigits(point[d], seed) : point[d]);
+        block[q] = fractionDigits(scrambled ? scrambleDigits(digits[q], seed) : digits[q]);
     }
 }
 

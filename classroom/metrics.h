@@ -1,23 +1,8 @@
 // classroom/metrics.h: the error of an image against a reference, as the charts, the tables and
-// the page measure it: reading a PFM, the lamp's pixels, RMSE, relMSE, bias and fireflies.
+// the page measure it: the lamp's pixels, RMSE, relMSE, bias and fireflies (bdpt.cpp's readPFM
+// reads the references).
 #pragma once
 #include "lecture.h"
-
-inline bool readPFM(const std::string& path, Image& img) {
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return false;
-    char magic[3] = {0};
-    int w = 0, h = 0;
-    float scale = 0;
-    bool ok = std::fscanf(f, "%2s %d %d %f", magic, &w, &h, &scale) == 4 && std::string(magic) == "PF" && w > 0 &&
-              h > 0 && w <= 16384 && h <= 16384 && scale < 0 && std::fgetc(f) != EOF;
-    if (ok) {
-        img = Image(w, h);
-        for (int y = h - 1; y >= 0 && ok; --y) ok = std::fread(&img.at(0, y), sizeof(Vec3), w, f) == size_t(w);
-    }
-    std::fclose(f);
-    return ok;
-}
 
 // Error against a reference image (speed against accuracy). RMSE over pixels and channels;
 // relMSE = mean (x - ref)^2 / (ref^2 + 0.01), as rendering papers report it; the relative bias of

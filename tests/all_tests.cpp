@@ -5,7 +5,7 @@
 #include "helpers.h"
 #include "bench.h"
 #include "classroom/workshop/densities.h"
-#include "classroom/homework/physics.h"
+#include "classroom/physics.h"
 #include <dirent.h>
 #include <locale>
 #include <sstream>

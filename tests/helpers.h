@@ -331,20 +331,3 @@ inline InterruptedRun interruptRun(const std::vector<std::string>& args, const s
     return r;
 }
 
-// Power out / power in of the floor of scenes/energy-generator.scene, as light tracing sees it:
-// the throughput of every light path arriving at the floor, and after one Importance-mode bounce.
-inline double floorPowerRatio(const Scene& scene, int paths) {
-    Rng rng = makeRng(12, 0, 0);
-    double in = 0, out = 0;
-    for (int i = 0; i < paths; ++i) {
-        EmissionSample es = sampleEmission(scene, rng);
-        Ray ray = spawnRay(es.point.sp, es.dir);
-        Hit hit = intersect(scene, ray);
-        if (!hit.found() || scene.shapes[hit.shape].emission.x > 0) continue;
-        SurfacePoint sp = surfaceAt(scene, ray, hit);
-        in += es.weight.x;
-        BsdfSample bs;
-        if (sampleBsdf(scene, sp, -ray.d, Transport::Importance, rng, bs)) out += es.weight.x * bs.weight.x;
-    }
-    return out / in;
-}

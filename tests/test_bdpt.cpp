@@ -1,135 +1,19 @@
 // Bidirectional path tracing: MIS weights, agreement with the other methods, the per-strategy
 // images.
 #include "helpers.h"
-#include "classroom/homework/physics.h"
+#include "classroom/physics.h"
 
 // -- MIS weights sum to 1 ------------------------------------------------------------------
 // A full path x_0 (light) .. x_{n-1} (pinhole) made by a real bdpt connection is split again at
 // every s' and its two subpaths rebuilt with the densities the generators would have stored;
 // the weights of all strategies able to make the path must sum to 1.
-static bool specularAt(const Scene& scene, const PathVertex& v) {
-    return v.type == PathVertex::Surface && isSpecular(scene.materials[scene.shapes[v.sp.shape].material]);
-}
-
-static std::vector<PathVertex> joinPath(const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera, int t) {
-    std::vector<PathVertex> x(light.begin(), light.begin() + s);
-    for (int j = t - 1; j >= 0; --j) x.push_back(camera[j]);
-    return x;
-}
-
-// The solid-angle density with which `cur`, reached from direction wo, samples direction w.
-static float pdfDirection(const Scene& scene, const PathVertex& cur, Vec3 wo, Vec3 w) {
-    if (cur.type == PathVertex::Camera) return pdfCameraDirection(scene.camera, w);
-    if (cur.type == PathVertex::Light) return pdfEmissionDirection(cur, w);
-    return pdfBsdf(scene, cur.sp, wo, w);
-}
-
-static Vec3 unitTo(const PathVertex& from, const PathVertex& to) { return normalize(to.sp.p - from.sp.p); }
-
-// The subpaths the generators would have made of x for strategy s: x_0..x_{s-1} from the light
-// and x_{n-1}..x_s from the pinhole, each vertex added by the walkers' own appendVertex (the
-// densities under test), so that misWeight sees what a sample of (s, n-s) would have stored.
-static void rebuild(const Scene& scene, const std::vector<PathVertex>& x, int s, std::vector<PathVertex>& y, std::vector<PathVertex>& z) {
-    const int n = int(x.size()), t = n - s;
-    auto grow = [&](std::vector<PathVertex>& path, PathVertex v, Transport mode) {
-        Vec3 d = path.back().sp.p - v.sp.p;
-        v.prevDist2 = dot(d, d);
-        v.wo = d / std::sqrt(v.prevDist2);
-        v.type = PathVertex::Surface;
-        v.deltaPosition = false;
-        v.sp.ng = geometricNormal(scene.shapes[v.sp.shape], v.sp.p);
-        v.sp.ns = shadingNormal(scene.shapes[v.sp.shape], v.sp.p, v.sp.ng);
-        v.delta = specularAt(scene, v);
-        v.pdfRev = 0;
-        appendVertex(scene, path, v, mode);
-    };
-    y.clear();
-    z.clear();
-    if (s > 0) {  // y_0 on the light
-        PathVertex v = x[0];
-        v.type = PathVertex::Light;
-        v.deltaPosition = v.sp.shape < 0;
-        v.continuation = 1;  // a light subpath always leaves y_0 (emission sampling)
-        v.sp.ng = v.deltaPosition ? Vec3(0) : geometricNormal(scene.shapes[v.sp.shape], v.sp.p);
-        v.delta = false;
-        v.pdfFwd = v.deltaPosition ? lightChoiceProbability(scene, v.light) : pdfLightPoint(scene, v.sp.shape);
-        v.pdfRev = 0;
-        y.push_back(v);
-        for (int i = 1; i < s; ++i) grow(y, x[i], Transport::Importance);
-    }
-    PathVertex z0 = x[n - 1];  // the pinhole
-    z0.type = PathVertex::Camera;
-    z0.deltaPosition = true;
-    z0.delta = false;
-    z0.pdfFwd = 1;
-    z0.pdfRev = 0;
-    z.push_back(z0);
-    for (int j = 1; j < t; ++j) grow(z, x[n - 1 - j], Transport::Radiance);
-}
-
-// The density with which one subpath samples x[from], then x[from + dir], ..., x[to], computed
-// from positions, materials and the samplers' own densities alone, with none of the stored
-// pdfFwd/pdfRev. A step from a non-specular vertex a to the next non-specular vertex b has
-//   p_omega(a) q(a) [q of the specular vertices between] x |cos_b| / d^2      (b next to a)
-//                                                       x G(a,b) / (eta_a^2 |cos_a|) (through a chain)
-// where the chain's geometry term G(a,b) = eta_a^2 |cos_a| d omega_a / dA_b is the same read from
-// either end (etendue: eta^2 cos dA d omega is kept by mirrors and Snell's law; the test
-// "specular chains" below checks it by finite differences), so every strategy able to make the
-// path, which crosses each chain whole, in one direction or the other, has the same G(a,b):
-// it is left out here. eta_a is the index where the chain's first segment runs.
-static double subpathDensity(const Scene& scene, const std::vector<PathVertex>& x, int from, int to, Roulette roulette) {
-    const int n = int(x.size()), dir = to >= from ? 1 : -1;
-    auto q = [&](int i) { return roulette == Roulette::Albedo && i > 0 && i < n - 1 ? albedoContinuation(scene, x[i].sp) : 1.0; };
-    auto isPoint = [&](int i) { return i == n - 1 || x[i].sp.shape < 0; };  // the pinhole, a point light
-    double p = from == n - 1 ? 1 : x[0].sp.shape < 0 ? lightChoiceProbability(scene, x[0].light) : pdfLightPoint(scene, x[0].sp.shape);
-    for (int a = from; a != to;) {
-        Vec3 w = unitTo(x[a], x[a + dir]);
-        PathVertex at = x[a];
-        at.type = a == n - 1 ? PathVertex::Camera : a == 0 ? PathVertex::Light : PathVertex::Surface;
-        double step = a == from ? pdfDirection(scene, at, Vec3(0), w) : pdfDirection(scene, at, unitTo(x[a], x[a - dir]), w);
-        step *= q(a);
-        int b = a + dir;
-        while (b != to && specularAt(scene, x[b])) step *= q(b), b += dir;
-        if (b == a + dir) {
-            Vec3 d = x[b].sp.p - x[a].sp.p;
-            step *= absDot(x[b].sp.ng, w) / dot(d, d);
-        } else {
-            const Shape& first = scene.shapes[x[a + dir].sp.shape];
-            const Material& m = scene.materials[first.material];
-            double eta = m.type == Material::Glass && dot(w, x[a + dir].sp.ng) > 0 ? m.ior : 1;  // the segment runs inside
-            step /= sqr(eta) * (isPoint(a) ? 1.0 : absDot(x[a].sp.ng, w));
-        }
-        p *= step;
-        a = b;
-    }
-    return p;
-}
-
-// Can strategy (s, n-s) make this path at all? s = 0 needs x_0 on an area light; a connection
-// needs both of its vertices non-specular.
-static bool able(const Scene& scene, const std::vector<PathVertex>& x, int s) {
-    if (s == 0) return x[0].sp.shape >= 0 && scene.shapes[x[0].sp.shape].light >= 0;
-    PathVertex a = x[s - 1], b = x[s];
-    a.type = s - 1 == 0 ? PathVertex::Light : PathVertex::Surface;
-    b.type = s == int(x.size()) - 1 ? PathVertex::Camera : PathVertex::Surface;
-    return !specularAt(scene, a) && !specularAt(scene, b);
-}
-
+// The path kit (joinPath, able, rebuild, pathDensity, subpathDensity) is classroom/physics.h's.
 struct WeightCheck {
     int paths = 0;
     double worstSum = 0, worstRebuild = 0, worstDefinition = 0, worstMergeWalk = 0, mergeShare = 0;
     int merges = 0, mergesUnderflowed = 0;
     std::map<int, int> lengths;
 };
-
-// The slides' Probability(SP, estimator), computed from scratch: strategy s samples x_0..x_{s-1}
-// from the light and x_{n-1}..x_s from the pinhole (the factors common to every strategy, the
-// chains' G and the deltas, left out).
-static double pathDensity(const Scene& scene, const std::vector<PathVertex>& x, int s, Roulette roulette) {
-    const int n = int(x.size());
-    return (s > 0 ? subpathDensity(scene, x, 0, s - 1, roulette) : 1) * subpathDensity(scene, x, n - 1, s, roulette);
-}
-
 
 // The weight that vcm's own merging code (mergeCameraVertices) gives the merge of the camera
 // subpath z's last vertex with vertex i of the light subpath y, both ending at one point: a pass of
@@ -180,7 +64,7 @@ static void forEachConnectedStrategy(const Scene& scene, const RenderOptions& op
 }
 
 // mergeEta > 0: vcm's weights, where a merge at every non-specular vertex x_i (0 < i < n-1) is
-// one more strategy, of density p_i * mergeEta * p_light(x_i) (the keys 1000 + i below).
+// one more strategy, of density p_i * mergeEta * p_light(x_i) (the keys kMergeKey + i below).
 static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, uint64_t seed, Roulette roulette = RenderOptions().roulette,
                                 double mergeEta = 0) {
     RenderOptions opt = quietOptions(Method::BDPT, 1, seed);
@@ -223,8 +107,8 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
             float wWalked = mergeWeight(scene, yMerge, i, zMerge, t2, h, mergeEta, pdf, pdfReverse);
             if (w < 0) w = wWalked, ++wc.mergesUnderflowed;  // a glossy lobe's f of 1e-30: nothing to splat
             wc.worstMergeWalk = std::max(wc.worstMergeWalk, double(std::fabs(w - wWalked)));
-            density[1000 + i] = subpathDensity(scene, x, 0, i, roulette) * subpathDensity(scene, x, int(x.size()) - 1, i, roulette) * mergeEta;
-            weight[1000 + i] = w;
+            density[kMergeKey + i] = subpathDensity(scene, x, 0, i, roulette) * subpathDensity(scene, x, int(x.size()) - 1, i, roulette) * mergeEta;
+            weight[kMergeKey + i] = w;
             sum += w;
             wc.mergeShare += w;
             ++wc.merges;
@@ -248,17 +132,11 @@ static Scene smallScene(const std::string& file) { return sceneAt(file, 16, 16);
 static double slideMaxEstimate(const Scene& scene, int samples, bool literal) {
     RenderOptions opt = quietOptions(Method::BDPT, 1, 31);
     opt.maxDepth = 12;
-    std::vector<PathVertex> y, z;
     double total = 0;
     forEachConnectedStrategy(scene, opt, samples, 31, 7, 2, [&](const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
                                                                  int t, const Connection&, Vec3 c) {  // c = SP.f / p_s
         std::vector<PathVertex> x = joinPath(light, s, camera, t);
-        std::map<int, double> density;
-        for (int s2 = 0; s2 < int(x.size()); ++s2) {
-            if (!able(scene, x, s2)) continue;
-            rebuild(scene, x, s2, y, z);
-            density[s2] = pathDensity(scene, x, s2, opt.roulette);  // Probability(SP, estimator s2)
-        }
+        std::map<int, double> density = strategyDensities(scene, x, opt.roulette);  // Probability(SP, estimator)
         double pMax = 0;
         for (auto [s2, p] : density) pMax = std::max(pMax, p);
         double share = literal ? density.at(s) / pMax : definitionWeight(Heuristic::Max, density, s);

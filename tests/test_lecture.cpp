@@ -133,7 +133,7 @@ TEST_CASE("bdpt.cpp: the first method within the first 21%; the BVH, Sobol point
         if (!firstMethod && line.rfind("inline Vec3 samplePT(", 0) == 0) firstMethod = lines;
         if (line.rfind("inline Vec3 sampleMLT(", 0) == 0) lastMethod = lines;
         if (line.rfind("struct BvhBuilder", 0) == 0) bvhBuilder = lines;
-        if (line.rfind("inline void sobolPoint(", 0) == 0 && line.find(';') == std::string::npos) fastSobol = lines;
+        if (line.rfind("inline void Rng::drawCoordinates(", 0) == 0 && line.find(';') == std::string::npos) fastSobol = lines;
         if (line.rfind("constexpr SobolMatrices makeSobolMatrices(", 0) == 0) sobolDefinition = lines;
         if (line.rfind("inline std::vector<uint32_t> buildHashGrid(", 0) == 0 && line.find(';') == std::string::npos) hashGrid = lines;
     }

@@ -5,7 +5,7 @@
 // proves nothing: with expected-value splats each pass's is its estimate of b, whatever the
 // chains do.
 #include "helpers.h"
-#include "classroom/homework/physics.h"
+#include "classroom/physics.h"
 
 namespace {
 

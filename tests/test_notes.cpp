@@ -3,6 +3,7 @@
 // exists, every figure they show is in lecture_notes/figures/, and the formulas they state are
 // the ones the code computes.
 #include "helpers.h"
+#include "classroom/physics.h"
 #include "classroom/workshop/densities.h"
 #include "classroom/workshop/worked_path.h"
 #include <dirent.h>
@@ -1349,7 +1350,7 @@ static std::vector<Quote> measuredQuotes() {
     Scene tilt20 = tilted;
     Vec3 u = normalize(tilt20.shapes[0].u), n = tilt20.shapes[0].normal;
     tilt20.shapes[0].tiltedNormal = normalize(std::cos(20 * kPi / 180) * n + std::sin(20 * kPi / 180) * u);
-    double at60 = floorPowerRatio(tilted, 200000), at20 = floorPowerRatio(tilt20, 200000);
+    double at60 = floorPowerRatio(tilted, 1, 200000, 12).mean, at20 = floorPowerRatio(tilt20, 1, 200000, 12).mean;
     const std::string p13 = "13-shading-normals.md";
     return {
         {p13, "The floor sends out **" + text("%.1f", at60) + " times the power it receives**"},

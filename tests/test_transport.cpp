@@ -1,6 +1,7 @@
 // Light tracing, instant radiosity, and where transport is not symmetric: refraction (eta^2) and
 // shading normals (the adjoint BSDF).
 #include "helpers.h"
+#include "classroom/physics.h"
 
 static Vec3 randomUpper(Rng& rng) {
     Vec3 w = sampleUniformSphere(rng.uniform(), rng.uniform());
@@ -111,15 +112,15 @@ TEST_CASE("shading normals: the adjoint BSDF's albedo exceeds 1 at grazing angle
 
 TEST_CASE("energy generator: a floor with a constant tilted shading normal reflects more power than it receives") {
     Scene tilted = sceneAt("scenes/energy-generator.scene", 48, 36);
-    double ratio = floorPowerRatio(tilted, 200000);
+    double ratio = floorPowerRatio(tilted, 1, 200000, 12).mean;
     MESSAGE("power out / power in: " << ratio << " (albedo 0.8)");
     CHECK(ratio > 1.5);
     Scene plain = tilted;
     plain.shapes[0].shading = Shape::ShadingNormal::Geometric;
-    CHECK(floorPowerRatio(plain, 200000) == doctest::Approx(0.8).epsilon(1e-4));
+    CHECK(floorPowerRatio(plain, 1, 200000, 12).mean == doctest::Approx(0.8).epsilon(1e-4));
     Scene uncorrected = tilted;  // the shading BSDF unadjoined keeps energy, loses consistency
     uncorrected.conventions.noAdjointCorrection = true;
-    CHECK(floorPowerRatio(uncorrected, 200000) <= 0.8 + 1e-4);
+    CHECK(floorPowerRatio(uncorrected, 1, 200000, 12).mean <= 0.8 + 1e-4);
     // Consistency, not conservation: with the adjoint lt agrees with nee on this floor's image.
     RegionEstimate nee = renderRegions(tilted, quietOptions(Method::NEE, 256, 44), 2);
     RegionEstimate lt = renderRegions(tilted, quietOptions(Method::LT, 1024, 45), 2);

@@ -6,7 +6,8 @@
 // functions below through cwrap; strings come back as pointers to a buffer that the next call
 // overwrites.
 #include "../lecture.h"
-#include "../metrics.h"  // readPFM, compareToReference: the error as the charts measure it
+#include "../metrics.h"  // compareToReference: the error as the charts measure it
+#include "../physics.h"  // the path view's densities and weights from their definitions
 #include <dirent.h>
 #include <emscripten/emscripten.h>
 #include <numeric>
@@ -26,6 +27,7 @@ struct WebPanel {
     int commonWidth = 0;              // the size at which it will (0: never)
     Scene maskScene;                  // the scene's camera at the compared size: a point light's pixel (lampPixels)
     VcmTotals vcm;                    // vcm's light vertices and memory over the passes, as ./bdpt counts them
+    std::vector<Vec3> ownSamples;     // the last pass's pixels' own samples, before the splats (the path view)
 };
 static WebPanel gPanel;
 static Image gGivenReference;         // a reference the page hands over (bdpt_reference_buffer)
@@ -209,6 +211,7 @@ EMSCRIPTEN_KEEPALIVE int bdpt_row() {
         if (gPanel.rowsDone == 0) r.beginPass();
         r.renderRow(gPanel.rowsDone++);
         if (gPanel.rowsDone == r.scene.camera.height) {
+            gPanel.ownSamples = r.pass;
             r.endPass();
             gPanel.rowsDone = 0;
             if (r.opt.method == Method::VCM) gPanel.vcm.add(r.storage.vcm);
@@ -299,87 +302,70 @@ EMSCRIPTEN_KEEPALIVE float* bdpt_strategy_image(int index, int weighted) {
 
 // ---- one sample's paths, drawn (the page's path view): page 7's worked path, live.
 
-// The terms of one path's MIS walk (misWalk), listed instead of summed: r_i = p_i / p_{s,t}.
-struct WalkTerms {
-    struct Term { double r; int s; bool merge; };
-    std::vector<Term> terms;
-    void add(double r, int s = 0, bool merge = false) { terms.push_back({r, s, merge}); }
-};
-
 static void appendVec(std::ostringstream& o, Vec3 v) { o << "[" << v.x << "," << v.y << "," << v.z << "]"; }
 
 // A vertex as the page draws it: where it is, where it appears on the film (null: behind the
 // camera), what it is, and its densities from its own side and from the other.
-static void appendVertex(std::ostringstream& o, const Scene& scene, const PathVertex& v) {
-    const Camera& cam = scene.camera;
-    Vec3 d = v.sp.p - cam.eye;
-    float z = dot(d, cam.forward);
+static void writeVertexJson(std::ostringstream& o, const Scene& scene, const PathVertex& v) {
+    float filmX = NAN, filmY = NAN;
+    projectToFilm(scene.camera, v.sp.p, filmX, filmY);  // sets them for any point in front of the pinhole
     o << "{\"p\":";
     appendVec(o, v.sp.p);
-    if (v.type == PathVertex::Camera || z <= 0) o << ",\"film\":null";
-    else o << ",\"film\":[" << (dot(d, cam.right) / (z * cam.tanHalfFov * cam.aspect) + 1) * 0.5f * cam.width << ","
-           << (1 - dot(d, cam.up) / (z * cam.tanHalfFov)) * 0.5f * cam.height << "]";
+    if (v.type == PathVertex::Camera || std::isnan(filmX)) o << ",\"film\":null";
+    else o << ",\"film\":[" << filmX << "," << filmY << "]";
     const char* kind = v.type == PathVertex::Camera ? "pinhole" : v.type == PathVertex::Light ? (v.deltaPosition ? "point light" : "lamp")
                      : v.delta ? "specular" : "surface";
     o << ",\"kind\":\"" << kind << "\",\"pdfFwd\":" << v.pdfFwd << ",\"pdfRev\":" << v.pdfRev << "}";
 }
 
-// Each heuristic's weights of the strategies a walk listed (the strategy itself first, r = 1), as
-// MisSum weighs one of them: balance r / sum r, power r^2 / sum r^2, uniform 1 / count, max 1 / ties.
-static std::vector<float> weightsOf(const std::vector<WalkTerms::Term>& terms, Heuristic h) {
-    std::vector<float> w;
-    for (const WalkTerms::Term& self : terms) {
-        MisSum m{h};
-        for (const WalkTerms::Term& other : terms) m.add(other.r / self.r);
-        w.push_back(self.r > 0 ? m.weight() : 0.0f);
-    }
-    return w;
-}
-
 static const Heuristic kHeuristics[4] = {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform};
 
-// Connection (s,t) of the two subpaths, as JSON: its contribution C_{s,t}, the renderer's weight
-// w_{s,t} in each heuristic (misWeight), and the path's table: every strategy able to make it,
-// its density p_i = p_{s,t} r_i and its weights.
-static bool appendConnection(std::ostringstream& o, const Scene& scene, Subpath light, int s, Subpath camera, int t, double mergeEta) {
+// Connection (s,t) as the render made it (C_{s,t}, the pixel it lands on), as JSON: the renderer's
+// weight w_{s,t} in each heuristic (misWeight), and the path's table from the definitions
+// (classroom/physics.h, as the tests judge the renderer): every strategy able to make the path
+// (vcm: and every merge, s its light vertices), its density p_i (through mirrors and glass the
+// chains' common G left out: ratios only) and each heuristic's weight of it.
+static void writeConnectionJson(std::ostringstream& o, const Scene& scene, const RenderOptions& opt, const std::vector<PathVertex>& light,
+                                const std::vector<PathVertex>& camera, const StrategySplat& made, double mergeEta) {
+    const int s = made.s, t = made.t;
     Connection c;
     int pixel = -1;
-    Vec3 C = connectStrategy(scene, light, s, camera, t, c, pixel);
-    if (isBlack(C) || (t == 1 && pixel < 0)) return false;
-    double p = 1;  // p_{s,t}: the densities of the vertices as their subpaths sampled them
-    for (int i = 0; i < s; ++i) p *= light[i].pdfFwd;
-    for (int i = 0; i < t; ++i) p *= camera[i].pdfFwd;
-    WalkTerms walk;
-    walk.add(1, s);
-    misWalk(light, s, camera, t, mergeEta, connectionJunction(scene, light, s, camera, t, c), 1, walk);
-    o << "{\"s\":" << s << ",\"t\":" << t << ",\"C\":" << average(C) << ",\"density\":" << p << ",\"pixel\":" << pixel << ",\"w\":[";
+    connectStrategy(scene, light, s, camera, t, c, pixel);  // the connection misWeight reads
+    std::vector<PathVertex> x = joinPath(light, s, camera, t);
+    std::map<int, double> density = strategyDensities(scene, x, opt.roulette, mergeEta);
+    o << "{\"s\":" << s << ",\"t\":" << t << ",\"C\":" << average(made.value) << ",\"density\":" << pathDensity(scene, x, s, opt.roulette)
+      << ",\"pixel\":" << made.pixel << ",\"w\":[";
     for (int h = 0; h < 4; ++h) o << (h ? "," : "") << misWeight(scene, light, s, camera, t, kHeuristics[h], c, mergeEta);
     o << "],\"strategies\":[";
-    std::vector<float> w[4];
-    for (int h = 0; h < 4; ++h) {
-        w[h] = weightsOf(walk.terms, kHeuristics[h]);
-        if (s + t == 2)  // the light seen directly is left to s = 0, whatever the densities (misWeight)
-            for (size_t i = 0; i < walk.terms.size(); ++i) w[h][i] = walk.terms[i].s == 0 ? 1.0f : 0.0f;
-    }
-    for (size_t i = 0; i < walk.terms.size(); ++i) {
-        const WalkTerms::Term& term = walk.terms[i];
-        o << (i ? "," : "") << "{\"s\":" << term.s << ",\"merge\":" << (term.merge ? "true" : "false") << ",\"density\":" << p * term.r << ",\"w\":["
-          << w[0][i] << "," << w[1][i] << "," << w[2][i] << "," << w[3][i] << "]}";
-    }
+    bool first = true;
+    auto writeStrategy = [&](int key) {  // (s,t) itself first, as the page lists it
+        bool merge = key >= kMergeKey;
+        o << (first ? "" : ",") << "{\"s\":" << (merge ? key - kMergeKey + 1 : key) << ",\"merge\":" << (merge ? "true" : "false")
+          << ",\"density\":" << density.at(key) << ",\"w\":[";
+        for (int h = 0; h < 4; ++h)  // the light seen directly is left to s = 0, whatever the densities (misWeight)
+            o << (h ? "," : "") << (s + t == 2 ? (key == 0 ? 1.0 : 0.0) : definitionWeight(kHeuristics[h], density, key));
+        o << "]}";
+        first = false;
+    };
+    writeStrategy(s);
+    for (const auto& [key, p] : density)
+        if (key != s) writeStrategy(key);
     o << "]}";
-    return true;
 }
 
 extern "C" {
 
-// Pixel (x, y)'s sample of the last pass done, made again from its own random streams: the
-// camera subpath, the light subpath (bdpt's and vcm's are the same), every connection that
-// carries light (appendConnection). vcm's weights count its merges (the pass's mergeEta); the
-// merges themselves are not drawn. "" for other methods.
+// Pixel (x, y)'s sample of the last pass done, made again from its own random streams as
+// sampleBDPT makes it (the camera subpath, the light subpath: bdpt's and vcm's are the same), its
+// connections listed by the lecture's own connectSubpaths as it weighs them (writeConnectionJson),
+// and the value the pixel got in that pass (before other pixels' splats): make test-web checks
+// that the connections' sum of C w for t >= 2 is that value, so what is drawn is the pixel's own
+// sample. vcm's weights count its merges (the pass's mergeEta); the merges themselves are not
+// drawn. "" for other methods.
 EMSCRIPTEN_KEEPALIVE const char* bdpt_path_sample(int x, int y) {
     const Rendering& r = *gPanel.rendering;
     const Scene& scene = r.scene;
-    const SampleOptions& opt = r.opt;
+    const RenderOptions& opt = r.opt;
     if ((opt.method != Method::BDPT && opt.method != Method::VCM) || r.result.passes == 0) return returned("");
     const int pass = r.result.passes - 1, ownPixel = y * scene.camera.width + x;
     const double mergeEta = opt.method == Method::VCM ? r.storage.vcm.mergeEta : 0;
@@ -389,22 +375,19 @@ EMSCRIPTEN_KEEPALIVE const char* bdpt_path_sample(int x, int y) {
     cameraSubpath(scene, opt, f.x, f.y, cameraRng, camera);
     Rng lightRng = lightPathRng(opt, ownPixel, pass);
     lightSubpath(scene, opt, lightRng, light);
+    RowOutput made;
+    connectSubpaths(scene, opt, light, camera, ownPixel, mergeEta, made, std::numeric_limits<int>::max(),
+                    [&made](const StrategySplat& c) { made.strategySplats.push_back(c); });
     std::ostringstream o;
     o.precision(7);
-    o << "{\"pass\":" << pass << ",\"film\":[" << f.x << "," << f.y << "],\"mergeEta\":" << mergeEta << ",\"camera\":[";
-    for (size_t i = 0; i < camera.size(); ++i) o << (i ? "," : ""), appendVertex(o, scene, camera[i]);
+    o << "{\"pass\":" << pass << ",\"film\":[" << f.x << "," << f.y << "],\"mergeEta\":" << mergeEta
+      << ",\"pixelValue\":" << average(gPanel.ownSamples[size_t(ownPixel)]) << ",\"camera\":[";
+    for (size_t i = 0; i < camera.size(); ++i) o << (i ? "," : ""), writeVertexJson(o, scene, camera[i]);
     o << "],\"light\":[";
-    for (size_t i = 0; i < light.size(); ++i) o << (i ? "," : ""), appendVertex(o, scene, light[i]);
+    for (size_t i = 0; i < light.size(); ++i) o << (i ? "," : ""), writeVertexJson(o, scene, light[i]);
     o << "],\"connections\":[";
-    bool first = true;
-    for (int t = 1; t <= int(camera.size()); ++t)
-        for (int s = 0; s <= int(light.size()); ++s) {
-            int bounces = s + t - 2;
-            if (bounces < opt.minDepth || bounces > opt.maxDepth || (s == 0 && t == 1)) continue;
-            std::ostringstream one;
-            one.precision(7);
-            if (appendConnection(one, scene, light, s, camera, t, mergeEta)) o << (first ? "" : ",") << one.str(), first = false;
-        }
+    for (size_t i = 0; i < made.strategySplats.size(); ++i)
+        o << (i ? "," : ""), writeConnectionJson(o, scene, opt, light, camera, made.strategySplats[i], mergeEta);
     o << "]}";
     return returned(o.str());
 }

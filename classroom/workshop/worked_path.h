@@ -11,6 +11,7 @@
 //   path:    any path of diffuse vertices from a lamp to the pinhole, given by its points (the
 //            page's path view draws one sample's paths; make test-web checks its weights here)
 #pragma once
+#include "../physics.h"  // definitionWeight: the weights from the densities
 #include <cstdio>
 #include <string>
 
@@ -71,17 +72,17 @@ inline PathDensities densitiesOf(const Scene& scene, const std::vector<SurfacePo
 // from the densities, relative to p_{k,ref}, and its balance, power and max weights.
 inline std::string strategyRows(const PathDensities& d, int ref) {
     const int n = int(d.fromLight.size());  // vertices, the pinhole included
-    std::vector<double> p(n + 1, 1);
-    double largest = 0, sum = 0, sum2 = 0;
+    std::map<int, double> p;
     for (int s = 0; s <= n; ++s) {
+        p[s] = 1;
         for (int i = 0; i < n; ++i) p[s] *= i < s ? d.fromLight[i] : d.fromCamera[i];
-        largest = std::max(largest, p[s]), sum += p[s], sum2 += p[s] * p[s];
     }
     const std::string k = std::to_string(n - 1);
     std::string out = "| s | t | $p_{" + k + ",s}$ | $/\\, p_{" + k + "," + std::to_string(ref) + "}$ | balance | power | max |\n|---|---|---|---|---|---|---|\n";
     for (int s = 0; s <= n; ++s)
         out += "| " + std::to_string(s) + " | " + std::to_string(n - s) + " | " + g4(p[s]) + " | " + g4(p[s] / p[ref]) + " | " +
-               format("%.4f", p[s] / sum) + " | " + format("%.4f", p[s] * p[s] / sum2) + " | " + (p[s] == largest ? "1" : "0") + " |\n";
+               format("%.4f", definitionWeight(Heuristic::Balance, p, s)) + " | " + format("%.4f", definitionWeight(Heuristic::Power, p, s)) +
+               " | " + format("%g", definitionWeight(Heuristic::Max, p, s)) + " |\n";
     return out;
 }
 

@@ -121,7 +121,7 @@ void runJobs(const std::vector<Job>& jobs) {
         while (running.size() >= cores) reap();
         pid_t pid = fork();
         if (pid == 0) {
-            std::string command = "g++ -O1 -std=c++17 -Wall -Wextra -pthread -I" + j.dir + " -o " + j.dir + "/grade classroom/homework/grade.cpp -lstb -pthread > " +
+            std::string command = "g++ -O1 -std=c++17 -Wall -Wextra -pthread -I" + j.dir + " -Iclassroom -o " + j.dir + "/grade classroom/homework/grade.cpp -lstb -pthread > " +
                                   j.dir + "/compile.log 2>&1 && " + j.dir + "/grade --data build/homework-data --tasks " + kDir + "/tasks.txt " +
                                   j.gradeArgs + " > " + j.dir + "/grade.log 2>&1";
             execl("/bin/sh", "sh", "-c", command.c_str(), (char*)nullptr);
