@@ -270,6 +270,11 @@ def close(a, b, tolerance=1e-6):
 
 
 def tests(browser, url):
+    only = [a for a in sys.argv[1:] if not a.startswith("--")]  # tests/test_web.py path_view ...: those alone
+    if only:
+        for name in only:
+            globals()[name](browser)
+        return
     first_panel(browser)
     every_method(browser)
     mistakes_in_input(browser)
@@ -824,14 +829,19 @@ def code_view(browser):
 def path_view(browser):
     """One sample's paths, drawn: a clicked pixel of a bdpt panel on cornell draws the camera and light
     subpaths and the connections; each drawn path's weights sum to 1 in every heuristic; the renderer's
-    w_{s,t} is the table's own row; and for a path of k = 3 they are build/worked-path's, which works
-    the densities out from their definitions for the path's points."""
+    w_{s,t} is the table's own row; for a path of k = 3 they are build/worked-path's, which works
+    the densities out from their definitions for the path's points; and what is drawn is the pixel's
+    own sample: the drawn connections' sum of C w (t >= 2) is the value the pixel got in that pass."""
     browser.run("scenes/cornell.scene", ["bdpt"], 1)
     checked, sums_ok, self_ok, worked_ok, details = 0, True, True, [], []
+    own_sample, lit, own_details = [], 0, []
     for x, y in ((20, 44), (40, 50), (12, 30), (50, 20), (32, 58), (8, 52)):
         browser.js("bdptPage.clickPixel(0, %d, %d)" % (x, y))
         browser.wait_for("bdptPage.pathView() && bdptPage.pathView().x == %d && bdptPage.pathView().y == %d" % (x, y))
         v = browser.js("bdptPage.pathView()")
+        lit += v["pixelValue"] > 0
+        own_sample.append(abs(v["ownSum"] - v["pixelValue"]) <= 1e-5 * max(1e-6, v["pixelValue"]))
+        own_details.append("pixel (%d,%d): value %.7g, drawn sum of C w %.7g" % (x, y, v["pixelValue"], v["ownSum"]))
         for i, c in enumerate(v["connections"]):
             v = browser.js("bdptPage.choosePath(%d)" % i)
             chosen = v["chosen"]
@@ -854,6 +864,8 @@ def path_view(browser):
           "the renderer's w_{s,t} its own row" % checked, "sums %s, own rows %s, drawn %r" % (sums_ok, self_ok, drawn))
     check(len(worked_ok) >= 2 and all(worked_ok), "the path view's weights of %d paths of length 3: build/worked-path's from the densities' definitions" % len(worked_ok),
           "; ".join(details))
+    check(lit >= 4 and all(own_sample), "the path view draws the pixel's own sample: at %d lit pixels of 6 the drawn connections' sum of C w is the pixel's value in that pass" % lit,
+          "; ".join(own_details))
 
 
 def speed(browser):

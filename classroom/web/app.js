@@ -759,7 +759,9 @@ function drawBars() {
 // by its worker from the pixel's own random streams: the camera subpath and the light subpath in
 // the image and from the side, each connection (s,t) that carries light, and for the path the
 // chosen one makes, every strategy that could make it: its density p and weight w in each heuristic
-// (page 7's worked path, for any pixel). Drawn weights come from the module (misWeight, misWalk).
+// (page 7's worked path, for any pixel). The connections and their w_{s,t} are the render's own
+// (connectSubpaths, misWeight); the table's densities and weights come from their definitions
+// (classroom/physics.h), as the tests judge the renderer.
 const HEURISTICS = ["balance", "power", "max", "uniform"];
 function requestPath(panel, x, y) {
     if (!/^(bdpt|vcm)\b/.test(entryScene(panel.entry).entry)) return;
@@ -781,6 +783,8 @@ function panelHeuristic(panel) {
     const m = panel.entry.match(/--heuristic\s+(\w+)/);
     return Math.max(0, HEURISTICS.indexOf(m ? m[1] : "balance"));
 }
+// The sum of C w over a sample's connections that stay in its pixel (t >= 2), with the weights the render used.
+function ownSum(sample) { return sample.connections.reduce((a, c) => a + (c.t >= 2 ? c.C * c.weight : 0), 0); }
 // The path of connection c: x_0 ... x_k, light vertices first, the pinhole last.
 function pathVertices(sample, c) { return [...sample.light.slice(0, c.s), ...sample.camera.slice(0, c.t).reverse()]; }
 function drawPath() {
@@ -791,7 +795,9 @@ function drawPath() {
     $("path-caption").textContent = `One sample of pixel (${v.x}, ${v.y}) of ${panel.entry}, pass ${sample.pass + 1}: the camera subpath (blue, ${sample.camera.length} vertices, ` +
         `the pinhole first) and the light subpath (amber, ${sample.light.length}), and ${sample.connections.length} connection${sample.connections.length === 1 ? "" : "s"} (s,t) ` +
         "that carry light (white; the chosen one thick). Left: in the image; right: from the side (depth across, the camera's up upward)." +
-        (sample.mergeEta > 0 ? " vcm: its weights count the merges too (mergeEta " + f4(sample.mergeEta) + "); the merges are not drawn." : "");
+        (sample.mergeEta > 0 ? " vcm: its weights count the merges too (mergeEta " + f4(sample.mergeEta) + "); the merges are not drawn." :
+         ` The pixel's value in this pass, ${f4(sample.pixelValue)}, is the sum of C w over the connections with t ≥ 2 (${f4(ownSum(sample))}): ` +
+         "this is the pixel's own sample; a t = 1 connection's light lands on the pixel it passes through (light tracing's splat).");
     drawPathImage(panel, sample, c);
     drawPathSide(sample, outline, c);
     const connRows = sample.connections.map((x, i) => `<tr class="connection${i === v.chosen ? " chosen" : ""}" data-index="${i}"><td>s=${x.s} t=${x.t}</td><td>${x.s + x.t - 1}</td>` +
@@ -806,7 +812,7 @@ function drawPath() {
     $("path-tables").innerHTML =
         `<table class="connections"><tr><th>connection</th><th>k</th><th>C<sub>s,t</sub> (unweighted)</th>${HEURISTICS.map((h) => `<th>w<sub>s,t</sub> ${h}</th>`).join("")}<th>p<sub>s,t</sub></th></tr>${connRows}</table>` +
         `<p>The path of s=${c.s} t=${c.t}: x<sub>0</sub> … x<sub>${k}</sub> (${pathVertices(sample, c).map((x) => x.kind).join(", ")}), k = ${k} segments. ` +
-        `Every strategy that can make it, its density p (area measure, the product of its vertices' densities) and its weight in each heuristic: ` +
+        `Every strategy that can make it, its density p from its definition (area measure, the product of its vertices' densities; through a mirror or glass the chain's factor that every strategy shares is left out) and its weight in each heuristic: ` +
         `each column of weights sums to 1 (unbiased), and the row in bold is the renderer's own w<sub>s,t</sub> above.</p>` +
         `<table class="strategies"><tr><th>strategy</th><th>p<sub>${k},s</sub></th><th>/ p<sub>s,t</sub></th>${HEURISTICS.map((h) => `<th>${h}</th>`).join("")}</tr>${stRows}` +
         `<tr class="sums"><td>sum</td><td></td><td></td>${sums.map((x) => `<td data-sum="${x}">${x.toFixed(4)}</td>`).join("")}</tr></table>`;
@@ -1260,7 +1266,8 @@ window.bdptPage = {
         if (!v) return null;
         const c = v.sample.connections[v.chosen];
         return { entry: v.panel.entry, x: v.x, y: v.y, pass: v.sample.pass, width: v.panel.width, height: v.panel.height,
-                 connections: v.sample.connections.map((x) => ({ s: x.s, t: x.t, w: x.w, strategies: x.strategies.length })),
+                 pixelValue: v.sample.pixelValue, ownSum: ownSum(v.sample),
+                 connections: v.sample.connections.map((x) => ({ s: x.s, t: x.t, C: x.C, w: x.w, weight: x.weight, pixel: x.pixel, strategies: x.strategies.length })),
                  chosen: { s: c.s, t: c.t, w: c.w, vertices: pathVertices(v.sample, c).map((x) => ({ p: x.p, kind: x.kind })), strategies: c.strategies },
                  sums: [...document.querySelectorAll("#path-tables tr.sums td[data-sum]")].map((td) => Number(td.dataset.sum)),
                  drawn: { camera: $("path-image").querySelectorAll("circle.camera").length, light: $("path-image").querySelectorAll("circle.light").length,

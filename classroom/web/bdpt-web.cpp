@@ -334,7 +334,7 @@ static void writeConnectionJson(std::ostringstream& o, const Scene& scene, const
     std::vector<PathVertex> x = joinPath(light, s, camera, t);
     std::map<int, double> density = strategyDensities(scene, x, opt.roulette, mergeEta);
     o << "{\"s\":" << s << ",\"t\":" << t << ",\"C\":" << average(made.value) << ",\"density\":" << pathDensity(scene, x, s, opt.roulette)
-      << ",\"pixel\":" << made.pixel << ",\"w\":[";
+      << ",\"pixel\":" << made.pixel << ",\"weight\":" << made.weight << ",\"w\":[";
     for (int h = 0; h < 4; ++h) o << (h ? "," : "") << misWeight(scene, light, s, camera, t, kHeuristics[h], c, mergeEta);
     o << "],\"strategies\":[";
     bool first = true;
