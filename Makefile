@@ -29,7 +29,7 @@ endif
 TEST_FILES := $(wildcard tests/test_*.cpp)
 # ./bdpt is the lecture's renderer (bdpt.cpp) with the classroom's tools (classroom/), one compile.
 RENDERER := bdpt.cpp classroom/classroom.cpp $(wildcard classroom/*.h)
-TEST_HEADERS := classroom/physics.h tests/helpers.h tests/lecture_test.h tests/bench.h tests/rays.h classroom/workshop/workshop.h classroom/workshop/densities.h classroom/workshop/worked_path.h
+TEST_HEADERS := classroom/physics.h tests/homework/mistakes.h tests/helpers.h tests/lecture_test.h tests/bench.h tests/rays.h classroom/workshop/workshop.h classroom/workshop/densities.h classroom/workshop/worked_path.h
 
 all: bdpt
 
@@ -344,7 +344,7 @@ grade: build/homework-tools/cut build/homework-data/numbers.txt
 	  else build/homework-tools/cut classroom/homework/tasks --list "$(TASKS)" > build/homework-grade/tasks.txt; fi
 	@build/homework-grade/grade --data build/homework-data --tasks build/homework-grade/tasks.txt $(if $(TASK),--task $(TASK))
 
-build/test_homework: tests/homework/test_homework.cpp
+build/test_homework: tests/homework/test_homework.cpp tests/homework/mistakes.h
 	@mkdir -p build
 	$(CXX) -O1 -std=c++17 -Wall -Wextra -o $@ $<
 test-homework: build/homework-tools/cut build/homework-data/numbers.txt build/test_homework

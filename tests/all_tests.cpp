@@ -6,7 +6,9 @@
 #include "bench.h"
 #include "classroom/workshop/densities.h"
 #include "classroom/physics.h"
+#include "homework/mistakes.h"
 #include <dirent.h>
+#include <functional>
 #include <locale>
 #include <sstream>
 // std::regex: test_notes reads the notes with it (first, as above).
@@ -47,6 +49,9 @@ namespace test_sampling {
 }
 namespace test_sampler {
 #include "test_sampler.cpp"
+}
+namespace test_suite_rules {
+#include "test_suite_rules.cpp"
 }
 namespace test_transport {
 #include "test_transport.cpp"

@@ -63,6 +63,7 @@ test_numerics ray offsets, scales, film coordinates, MIS ranges
 test_robustness malformed scenes, Ctrl-C, numerical edge cases
 test_sampling chi-square of every sampling routine
 test_sampler quasi-random numbers: nets, scrambles, means, error
+test_suite_rules the suite's own rules: no test measures time
 test_transport lt, ir, refraction, shading normals, clamp, nee --mis
 test_vcm vcm: the hash grid, merges, the radius schedule
 TABLE

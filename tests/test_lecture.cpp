@@ -1,6 +1,7 @@
 // The lecture's file alone: bdpt.cpp compiled without classroom/ renders every method as ./bdpt
 // does, bit for bit, and every method's image at a fixed seed is what it was.
 #include "helpers.h"
+#include "homework/mistakes.h"
 
 // FNV-1a 64 of an image's floats, rows from the top: the fingerprint tests/fixed-seed-images.txt keeps.
 static uint64_t pixelHash(const Image& img) {
@@ -275,6 +276,38 @@ TEST_CASE("the homework's cuts still fit bdpt.cpp, and the file they make compil
     CHECK(todos == cuts);  // every cut of the task list, each once
     CHECK(std::system("g++ -std=c++17 -Wall -Wextra -Werror -fsyntax-only build/tmp/homework/bdpt.cpp > build/tmp/homework-syntax.log 2>&1") == 0);
     CAPTURE(readFile("build/tmp/homework-syntax.log"));
+    // What a cut leaves above its TODO is code: a comment there would be the cut lines' own
+    // explanation, handed out with the task (specularScatter's "Radiance flows wi -> wo: ...").
+    std::vector<std::string> lines;
+    std::istringstream in(handedOut);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    int commentsAbove = 0;
+    for (size_t i = 1; i < lines.size(); ++i)
+        if (lines[i].find("// TODO (H") != std::string::npos && lines[i - 1].find_first_not_of(' ') != std::string::npos &&
+            lines[i - 1].compare(lines[i - 1].find_first_not_of(' '), 2, "//") == 0) {
+            MESSAGE("a comment left above a TODO: " << lines[i - 1]);
+            ++commentsAbove;
+        }
+    CHECK(commentsAbove == 0);
+}
+
+// tests/homework/mistakes.txt pins texts of bdpt.cpp (the lines each plausible mistake changes):
+// each must be there exactly once, or make test-homework, minutes later, cannot apply it.
+TEST_CASE("every text tests/homework/mistakes.txt changes is in bdpt.cpp exactly once") {
+    const std::string source = readFile("bdpt.cpp");
+    std::vector<Mistake> mistakes = readMistakes();
+    int texts = 0, once = 0;
+    for (const Mistake& m : mistakes)
+        for (const auto& edit : m.edits) {
+            ++texts;
+            size_t at = source.find(edit.first);
+            bool found = at != std::string::npos && source.find(edit.first, at + 1) == std::string::npos;
+            once += found;
+            if (!found) MESSAGE(m.task << " \"" << m.what << "\": " << (at == std::string::npos ? "not found" : "found twice") << ": " << edit.first);
+        }
+    CHECK(mistakes.size() >= 30);
+    CHECK(texts >= 32);
+    CHECK(once == texts);
 }
 
 // Each program's --help promises what that program does: the pyramid montages, vcm's memory line

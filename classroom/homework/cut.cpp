@@ -209,10 +209,15 @@ static std::string applyCut(const std::string& source, const Task& t, const Cut&
         for (const std::string& s : c.stub) body += "    " + s + "\n";
         return source.substr(0, d.open + 1) + body + source.substr(d.end);
     }
-    size_t from = source.find(c.from, d.open), to = from == std::string::npos ? from : source.find(c.to, from);
-    if (from == std::string::npos || from > d.end) fail(where, "'" + c.from + "' is not in " + c.function + "()");
-    if (to == std::string::npos || to > d.end) fail(where, "'" + c.to + "' does not follow '" + c.from + "' in " + c.function + "()");
+    // The anchors are code (found where comments are blanked): a reworded comment moves no cut.
+    size_t from = code.find(c.from, d.open), to = from == std::string::npos ? from : code.find(c.to, from);
+    if (from == std::string::npos || from > d.end) fail(where, "'" + c.from + "' is not in " + c.function + "()'s code");
+    if (to == std::string::npos || to > d.end) fail(where, "'" + c.to + "' does not follow '" + c.from + "' in " + c.function + "()'s code");
     from = source.rfind('\n', from) + 1, to = source.rfind('\n', to) + 1;
+    // The comment lines just above the first cut line explain it: they go with it (they would answer the TODO).
+    for (size_t above; from > d.open + 1 && (above = source.rfind('\n', from - 2) + 1) > d.open &&
+                       source.compare(source.find_first_not_of(' ', above), 2, "//") == 0;)
+        from = above;
     const std::string indent = source.substr(from, source.find_first_not_of(' ', from) - from);
     std::string lines = todoBlock(t, c, indent);
     for (const std::string& s : c.stub) lines += indent + s + "\n";

@@ -24,6 +24,7 @@
 #include <string>
 #include <thread>
 #include <vector>
+#include "mistakes.h"
 
 namespace {
 
@@ -47,40 +48,6 @@ std::string squeeze(const std::string& s) {  // runs of white space as one space
 int shell(const std::string& command) {
     int status = std::system(command.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// -- the mistakes, as tests/homework/mistakes.txt writes them
-struct Mistake {
-    std::string kind, task, what, words;
-    std::vector<std::pair<std::string, std::string>> edits;  // replace, with
-};
-std::vector<Mistake> readMistakes() {
-    std::vector<Mistake> list;
-    std::istringstream in(readFile("tests/homework/mistakes.txt"));
-    std::string* open = nullptr;
-    for (std::string line; std::getline(in, line);) {
-        if (line.empty() || line[0] == '#') { open = nullptr; continue; }
-        if (line.rfind("mistake ", 0) == 0 || line.rfind("robust ", 0) == 0) {
-            Mistake m;
-            m.kind = line.substr(0, line.find(' '));
-            std::vector<std::string> parts;
-            std::stringstream fields(line.substr(m.kind.size() + 1));
-            for (std::string f; std::getline(fields, f, '|');) parts.push_back(f.substr(f.find_first_not_of(' '), f.find_last_not_of(' ') - f.find_first_not_of(' ') + 1));
-            REQUIRE(parts.size() == 3);
-            m.task = parts[0], m.what = parts[1], m.words = parts[2];
-            list.push_back(m);
-            open = nullptr;
-        } else if (line.rfind("  replace ", 0) == 0) {
-            list.back().edits.push_back({line.substr(10), ""});
-            open = &list.back().edits.back().first;
-        } else if (line.rfind("  with ", 0) == 0) {
-            list.back().edits.back().second = line.substr(7);
-            open = &list.back().edits.back().second;
-        } else if (open) {
-            *open += "\n" + line;
-        }
-    }
-    return list;
 }
 
 // -- a grading's report: each task's points and its notes
