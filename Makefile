@@ -199,7 +199,7 @@ build/web/notes.js: classroom/web/build_notes.js $(wildcard lecture_notes/*.md l
 	@mkdir -p build/web
 	node classroom/web/build_notes.js $@ build/web/notes/figures
 # The code view: bdpt.cpp highlighted by Debian's highlight.js at build time (build_code.js).
-build/web/code.js: classroom/web/build_code.js bdpt.cpp classroom/metrics.h classroom/figures.h
+build/web/code.js: classroom/web/build_code.js bdpt.cpp classroom/metrics.h classroom/figures.h build/homework-tools/cut
 	@test -f /usr/share/javascript/highlight.js/highlight.min.js || { echo "make web needs Debian's libjs-highlight.js: apt-get install libjs-highlight.js"; exit 1; }
 	@mkdir -p build/web
 	node classroom/web/build_code.js $@
@@ -308,7 +308,7 @@ clean:
 # make grade [HOMEWORK=path/to/bdpt.cpp]: grades that file (by default build/homework/bdpt.cpp)
 # against the same data. make test-homework: the solution full marks, the stubs none, every
 # mistake of tests/homework/mistakes.txt named and no other task's points lost.
-build/homework-tools/cut: classroom/homework/cut.cpp
+build/homework-tools/cut: classroom/homework/cut.cpp classroom/definitions.h
 	@mkdir -p build/homework-tools
 	$(CXX) -O1 -std=c++17 -Wall -Wextra -o $@ $<
 build/homework-tools/grade-solution: classroom/homework/grade.cpp classroom/physics.h bdpt.cpp build/flags

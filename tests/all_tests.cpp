@@ -6,10 +6,12 @@
 #include "bench.h"
 #include "classroom/workshop/densities.h"
 #include "classroom/physics.h"
+#include "classroom/definitions.h"
 #include "homework/mistakes.h"
 #include <dirent.h>
 #include <functional>
 #include <locale>
+#include <set>
 #include <sstream>
 // std::regex: test_notes reads the notes with it (first, as above).
 #include <regex>

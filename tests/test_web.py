@@ -820,6 +820,26 @@ def code_view(browser):
     line = next(i + 1 for i, l in enumerate(source) if re.match(r"inline \w+ evalBsdf\(", l))
     check(shown and shown["firstLine"] == line and "evalBsdf(" in shown["first"] and shown["inView"] and shown["beside"],
           "page 13's evalBsdf(): the code view opens at bdpt.cpp:%d, on screen, beside the panels" % line, repr(shown))
+    # The marked range is the definition, whole: from its first line to the brace that closes its
+    # body, found here by counting the braces of bdpt.cpp's code (comments and strings aside).
+    def body_end(first):
+        depth, opened = 0, False
+        for n in range(first - 1, len(source)):
+            code = re.sub(r'"(\\.|[^"\\])*"|\'(\\.|[^\'\\])*\'', '""', source[n]).split("//")[0]
+            depth += code.count("{") - code.count("}")
+            opened = opened or "{" in code
+            if opened and depth == 0:
+                return n + 1
+        return 0
+    ranges = []
+    for name in ("evalBsdf", "misWeight", "sampleVCM", "dot", "pixelImportance", "Rng::drawCoordinates", "connectSubpaths"):
+        shown = browser.js("bdptPage.openCode(%s)" % json.dumps(name))
+        first = shown and shown["firstLine"]
+        ok = bool(shown) and shown["where"].endswith("bdpt.cpp, lines %d-%d" % (first, first + shown["lines"] - 1)) and first + shown["lines"] - 1 == body_end(first) \
+             and shown["marked"] == source[first - 1:first - 1 + shown["lines"]]
+        ranges.append((name, ok, shown and shown["where"], first and body_end(first)))
+    check(all(ok for _, ok, _, _ in ranges), "the code view marks each definition whole, its first line to the brace that closes its body (7 functions, a one-line one among them)",
+          "; ".join("%s: %s, the body ends at %s" % (n, w, e) for n, ok, w, e in ranges if not ok))
     browser.run("scenes/cornell.scene", ["vcm"], 1)
     shown = browser.js("bdptPage.clickPanelMethod(0)")
     check(shown and "sampleVCM(" in shown["first"] and shown["inView"], "a panel's method name opens its function (vcm: sampleVCM)", repr(shown))

@@ -5,6 +5,7 @@
 // the task list's file:line, before anything is written.
 //   cut TASKS_FILE SOURCE OUT_DIR [IDS]     IDS: "H1 H2 ..." (default: every task but the optional)
 //   cut TASKS_FILE --list [IDS]             the grader's task list (ID points title) on stdout
+//   cut --index FILE...                     every definition of the files (classroom/definitions.h)
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include "../definitions.h"  // where a function is defined: the one index the page and the tests read too
 
 struct Cut {
     int line = 0;                     // in the task list
@@ -88,62 +90,6 @@ static std::vector<Task> readTasks(const std::string& file) {
     return tasks;
 }
 
-// The source as the compiler sees its structure: comments, strings and character literals blanked
-// (same length), so that braces and names are found only in code.
-static std::string codeOnly(const std::string& s) {
-    std::string c = s;
-    for (size_t i = 0; i < c.size(); ++i) {
-        if (c[i] == '/' && i + 1 < c.size() && c[i + 1] == '/') {
-            while (i < c.size() && c[i] != '\n') c[i++] = ' ';
-        } else if (c[i] == '/' && i + 1 < c.size() && c[i + 1] == '*') {
-            for (; i + 1 < c.size() && !(c[i] == '*' && c[i + 1] == '/'); ++i)
-                if (c[i] != '\n') c[i] = ' ';
-            if (i + 1 < c.size()) c[i] = c[i + 1] = ' ', ++i;
-        } else if (c[i] == '"' || c[i] == '\'') {
-            const char q = c[i];
-            if (q == '\'' && i > 0 && std::isxdigit((unsigned char)c[i - 1])) continue;  // a digit separator
-            for (++i; i < c.size() && c[i] != q; ++i) {
-                if (c[i] == '\\') c[i++] = ' ';
-                if (i < c.size() && c[i] != '\n') c[i] = ' ';
-            }
-        }
-    }
-    return c;
-}
-
-static size_t matching(const std::string& code, size_t open, char a, char b) {
-    int depth = 0;
-    for (size_t i = open; i < code.size(); ++i) {
-        if (code[i] == a) ++depth;
-        if (code[i] == b && --depth == 0) return i;
-    }
-    return std::string::npos;
-}
-
-// A function's first definition at the file's top level: its parameter list [paren, close] and
-// its body [open, end] (the braces).
-struct Definition {
-    size_t paren = 0, close = 0, open = 0, end = 0;
-};
-static bool findDefinition(const std::string& code, const std::string& name, Definition& d) {
-    auto isWord = [](char ch) { return std::isalnum((unsigned char)ch) || ch == '_'; };
-    for (size_t at = code.find(name + "("); at != std::string::npos; at = code.find(name + "(", at + 1)) {
-        if (at > 0 && (isWord(code[at - 1]) || code[at - 1] == ':')) continue;
-        size_t lineStart = code.rfind('\n', at) + 1;
-        if (code[lineStart] == ' ' || code[lineStart] == '\n') continue;  // not at the top level
-        d.paren = at + name.size();
-        d.close = matching(code, d.paren, '(', ')');
-        if (d.close == std::string::npos) continue;
-        size_t next = code.find_first_not_of(" \n", d.close + 1);
-        while (next != std::string::npos && code.compare(next, 5, "const") == 0) next = code.find_first_not_of(" \n", next + 5);
-        if (next == std::string::npos || code[next] != '{') continue;  // a declaration
-        d.open = next;
-        d.end = matching(code, d.open, '{', '}');
-        if (d.end != std::string::npos) return true;
-    }
-    return false;
-}
-
 // The names of a parameter list's named parameters ("const Scene& scene, int, Rng& rng = x").
 static std::vector<std::string> parameterNames(const std::string& list) {
     std::vector<std::string> names, params;
@@ -200,9 +146,9 @@ static std::string todoBlock(const Task& t, const Cut& c, const std::string& ind
 }
 
 static std::string applyCut(const std::string& source, const Task& t, const Cut& c, const std::string& tasksFile) {
-    const std::string where = tasksFile + ":" + std::to_string(c.line), code = codeOnly(source);
-    Definition d;
-    if (!findDefinition(code, c.function, d)) fail(where, "no definition of " + c.function + "() in the source");
+    const std::string where = tasksFile + ":" + std::to_string(c.line), code = definitions::codeOnly(source);
+    definitions::Definition d;
+    if (!definitions::topLevelFunction(definitions::index(source), c.function, d)) fail(where, "no definition of " + c.function + "() in the source");
     if (c.to.empty()) {  // the whole body
         std::string body = "\n" + todoBlock(t, c, "    ");
         for (const std::string& p : parameterNames(source.substr(d.paren + 1, d.close - d.paren - 1))) body += "    (void)" + p + ";\n";
@@ -266,7 +212,25 @@ static std::string readme(const std::vector<const Task*>& tasks) {
     return r.str();
 }
 
+// cut --index FILE...: every definition of the files, a line each: FILE NAME FIRST LAST (the
+// page's code view reads it, web/build_code.js).
+static int printIndex(int argc, char** argv) {
+    for (int i = 2; i < argc; ++i) {
+        std::ifstream in(argv[i], std::ios::binary);
+        if (!in) {
+            std::fprintf(stderr, "cut --index: cannot read %s\n", argv[i]);
+            return 1;
+        }
+        std::stringstream s;
+        s << in.rdbuf();
+        for (const definitions::Definition& d : definitions::index(s.str()))
+            std::printf("%s %s %d %d\n", argv[i], d.name.c_str(), d.firstLine, d.lastLine);
+    }
+    return 0;
+}
+
 int main(int argc, char** argv) {
+    if (argc >= 3 && std::string(argv[1]) == "--index") return printIndex(argc, argv);
     if (argc < 4 && !(argc == 3 && std::string(argv[2]) == "--list")) {
         std::fprintf(stderr, "usage: %s TASKS_FILE SOURCE OUT_DIR [\"H1 H2 ...\"] | %s TASKS_FILE --list [\"H1 H2 ...\"]\n", argv[0], argv[0]);
         return 2;

@@ -1244,12 +1244,14 @@ window.bdptPage = {
         a.click();
         return bdptPage.codeShown();
     },
+    openCode: (name) => (openCode(name) ? bdptPage.codeShown() : null),
     clickPanelMethod: (i) => { state.panels[i].el.querySelector("h2 a.code-link").click(); return bdptPage.codeShown(); },
     codeShown: () => {
         if ($("code-view").hidden) return null;
         const view = $("notes-view").getBoundingClientRect(), lines = [...$("code-text").querySelectorAll(".line.target")];
         const first = lines[0], r = first && first.getBoundingClientRect();
         return { where: $("code-where").textContent, first: first ? first.textContent : "", lines: lines.length, firstLine: first ? Number(first.dataset.n) : 0,
+                 marked: lines.map((l) => l.textContent),
                  inView: !!r && r.top >= view.top && r.bottom <= view.bottom, beside: view.right <= $("live").getBoundingClientRect().left + 1 };
     },
     notesButtons: () => [...document.querySelectorAll("#notes-text .run-command")].map((b) => ({ command: b.dataset.command, runs: b.tagName === "BUTTON", reason: b.dataset.reason || "" })),

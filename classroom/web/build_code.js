@@ -3,7 +3,8 @@
 // (libjs-highlight.js), so that the page runs no highlighter:
 //   node classroom/web/build_code.js OUT.js
 // writes OUT.js: const BDPT_CODE = {files: {path: [HTML of each line]}, functions: {name: [path,
-// line, last line]}}: a function's definition (the first, and bdpt.cpp's first) and its closing brace.
+// line, last line]}}: a function's definition (the first, and bdpt.cpp's first) and its closing brace,
+// from build/homework-tools/cut --index.
 "use strict";
 const fs = require("fs");
 // Debian's highlight.js 9 prints a notice of its end of support when it loads and highlights:
@@ -37,21 +38,15 @@ function splitLines(html) {
     return lines;
 }
 
-// A definition: a line (indented at most 4: free functions and struct members) that declares a
-// type, then NAME(, and whose declaration reaches a "{" before any ";".
-function definitions(text) {
-    const lines = text.split("\n"), found = {};
-    const head = /^ {0,4}(?!return\b|if\b|for\b|while\b|switch\b|else\b|case\b|using\b|delete\b|new\b)(?:template\s*<[^>]*>\s*)?(?:(?:inline|static|constexpr|explicit)\s+)*[A-Za-z_][\w:]*(?:<[^()]*?>)?(?:\s*[*&]+\s*|\s+)([A-Za-z_]\w*)\s*\(/;
-    lines.forEach((line, i) => {
-        const m = head.exec(line);
-        if (!m || m[1] in found || /^\s*\/\//.test(line)) return;
-        const rest = lines.slice(i, i + 12).join("\n").slice(m.index + m[0].length);
-        const brace = rest.indexOf("{"), semicolon = rest.indexOf(";");
-        if (brace < 0 || (semicolon >= 0 && semicolon < brace)) return;
-        // its end: the first later line that closes a brace at the definition's own indentation
-        const indent = line.match(/^ */)[0], end = lines.findIndex((l, j) => j > i && new RegExp("^" + indent + "}").test(l));
-        found[m[1]] = [i + 1, end < 0 ? i + 1 : end + 1];
-    });
+// Where each function is defined: the one index of definitions (classroom/definitions.h), which
+// the homework's cutter and the notes' tests read too, printed by `cut --index` (make builds it).
+const { execFileSync } = require("child_process");
+function definitions(file) {
+    const found = {};
+    for (const row of execFileSync("build/homework-tools/cut", ["--index", file], { encoding: "utf8" }).trim().split("\n")) {
+        const [, name, first, last] = row.split(" ");
+        if (name && !(name in found)) found[name] = [Number(first), Number(last)];
+    }
     return found;
 }
 
@@ -60,7 +55,7 @@ for (const file of FILES) {
     const source = fs.readFileSync(file, "utf8"), lines = splitLines(quiet(() => hljs.highlight("cpp", source).value));
     if (lines.length !== source.split("\n").length) throw new Error(`build_code.js: ${file}'s highlighted lines do not match its lines`);
     code.files[file] = lines;
-    for (const [name, [line, end]] of Object.entries(definitions(source))) if (!(name in code.functions)) code.functions[name] = [file, line, end];
+    for (const [name, [line, end]] of Object.entries(definitions(file))) if (!(name in code.functions)) code.functions[name] = [file, line, end];
 }
 fs.writeFileSync(out + ".tmp", "const BDPT_CODE = " + JSON.stringify(code) + ";\n");
 fs.renameSync(out + ".tmp", out);
