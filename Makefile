@@ -334,15 +334,21 @@ homework: build/homework-tools/cut build/homework-data/numbers.txt
 	@cp $(HOMEWORK_DIR).tmp/bdpt.cpp $(HOMEWORK_DIR).tmp/grader/handed-out.cpp
 	@rm -rf $(HOMEWORK_DIR) && mv $(HOMEWORK_DIR).tmp $(HOMEWORK_DIR)
 HOMEWORK ?= build/homework/bdpt.cpp
+GRADE_DIR := build/homework-grade
+# make grade grades any file as a student's folder would: it writes one (the file as bdpt.cpp, the
+# grader and its data, the tasks of the folder the file is in, or else the default ones) and runs
+# that folder's own Makefile, the one rule that compiles the grader.
 grade: build/homework-tools/cut build/homework-data/numbers.txt
 	@test -f "$(HOMEWORK)" || { echo "make grade: no $(HOMEWORK) (make homework writes build/homework/; or make grade HOMEWORK=path/to/bdpt.cpp)"; exit 2; }
-	@mkdir -p build/homework-grade
-	@echo "make grade: compiling the grader with $(HOMEWORK) (about 15 seconds)"
-	@$(CXX) $(CXXFLAGS) -I$(dir $(HOMEWORK)) -Iclassroom -o build/homework-grade/grade classroom/homework/grade.cpp $(LDLIBS) || \
-	  { echo "make grade: $(HOMEWORK) does not compile with the grader (the compiler's first message above): no task is graded until it does"; exit 1; }
-	@if [ -f $(dir $(HOMEWORK))grader/tasks.txt ]; then cp $(dir $(HOMEWORK))grader/tasks.txt build/homework-grade/tasks.txt; \
-	  else build/homework-tools/cut classroom/homework/tasks --list "$(TASKS)" > build/homework-grade/tasks.txt; fi
-	@build/homework-grade/grade --data build/homework-data --tasks build/homework-grade/tasks.txt $(if $(TASK),--task $(TASK))
+	@mkdir -p $(GRADE_DIR)/grader
+	@cmp -s "$(HOMEWORK)" $(GRADE_DIR)/bdpt.cpp || cp "$(HOMEWORK)" $(GRADE_DIR)/bdpt.cpp
+	@for f in classroom/homework/grade.cpp classroom/physics.h; do cmp -s $$f $(GRADE_DIR)/grader/$$(basename $$f) || cp $$f $(GRADE_DIR)/grader/; done
+	@cmp -s classroom/homework/Makefile.student $(GRADE_DIR)/Makefile || cp classroom/homework/Makefile.student $(GRADE_DIR)/Makefile
+	@ln -sfn ../../homework-data $(GRADE_DIR)/grader/data && ln -sfn ../../scenes $(GRADE_DIR)/scenes
+	@if [ -f $(dir $(HOMEWORK))grader/tasks.txt ]; then cp $(dir $(HOMEWORK))grader/tasks.txt $(GRADE_DIR)/grader/tasks.txt; \
+	  else build/homework-tools/cut classroom/homework/tasks --list "$(TASKS)" > $(GRADE_DIR)/grader/tasks.txt; fi
+	@echo "make grade: $(HOMEWORK), in $(GRADE_DIR)/"
+	@$(MAKE) --no-print-directory -C $(GRADE_DIR) grade $(if $(TASK),TASK=$(TASK))
 
 build/test_homework: tests/homework/test_homework.cpp tests/homework/mistakes.h
 	@mkdir -p build

@@ -3428,117 +3428,119 @@ const std::vector<Method> kPrimarySample = {Method::PSSMLT, Method::MMLT};
 constexpr const char* kBdptFamilyName = "--method bdpt, vcm, mlt, pssmlt and mmlt";
 constexpr const char* kLightPathName = "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, pssmlt, mmlt)";
 constexpr const char* kMetropolisName = "--method mlt, pssmlt and mmlt";
-using CL = CommandLine;  // the table's setters are short lambdas
-using A = ArgReader;
-inline const std::vector<OptionRow<CommandLine>> kOptions = {
-    {nullptr, "", {}, "", "usage: bdpt SCENE [options]\n"
-     "Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)\n"
-     "and, beside it, a PFM with the linear values. For example:\n"
-     "  ./bdpt scenes/cornell.scene --method bdpt --spp 64 --out build/cornell.png\n\nMethod", nullptr},
-    {"--method", "M", {}, "", methodHelp(),
-     [](CL& cl, A& a) { cl.opt.method = a.choice<Method>("method", kMethodNames); }},
-    {"--mis", "", {Method::NEE}, "--method nee", "nee: weight light and BSDF sampling with the power heuristic",
-     [](CL& cl, A&) { cl.opt.mis = true; }},
-    {"--vpls", "N", {Method::IR}, "--method ir", "ir: light paths traced per pass, each leaving VPLs (default 16)",
-     [](CL& cl, A& a) { cl.opt.ir.vplPaths = int(a.integer(1, 1e6)); }},
-    {"--clamp", "C", {Method::IR}, "--method ir", "ir: bound the geometry term G by C (panel (e)); prints the energy removed",
-     [](CL& cl, A& a) { cl.opt.ir.clamp = float(a.number(1e-30, 1e30)); }},
-    {"--heuristic", "H", kBdptFamily, kBdptFamilyName, "bdpt, vcm, and the Metropolis methods' bdpt samples: MIS weights balance\n"
-     "(default), power, max (the slides' maximum heuristic) or uniform (1 /\nnumber of strategies able to make the path)",
-     [](CL& cl, A& a) { cl.opt.heuristic = a.choice<Heuristic>("heuristic", kHeuristicNames); }},
-    {"--radius", "R", {Method::VCM}, "--method vcm", "vcm: merging radius r_0 of the first pass (default: one pixel's footprint\n"
-     "where the central camera ray meets the scene); 0: no merging, as bdpt.\n"
-     "vcm keeps a pass's light subpaths, about 140 bytes per light vertex (the\n"
-     "vertex, and a grid record if mergeable), 1 to 6 light vertices per pixel on\n"
-     "the scenes",
-     [](CL& cl, A& a) { cl.opt.vcm.radius = float(a.number(0, 1e30)); }},
-    {"--alpha", "A", {Method::VCM}, "--method vcm", "vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1\n(default 0.75)",
-     [](CL& cl, A& a) { cl.opt.vcm.alpha = float(a.number(1e-3, 1)); }},
-    {"--strategies", "DIR", {Method::BDPT, Method::VCM}, "--method bdpt and vcm", "bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length\n"
-     "(vcm: and one of all merges per path length), unweighted and MIS-weighted,\n"
-     "into DIR",
-     [](CL& cl, A& a) { cl.strategiesDir = a.value(); }},
-    {"--strategy-length", "K", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)",
-     "longest path (segments) with per-strategy images (default 5)", [](CL& cl, A& a) { cl.strategyLength = int(a.integer(1, 12)); }},
-    {"--large-step", "P", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: probability of a large step, every number drawn afresh (0.3)",
-     [](CL& cl, A& a) { cl.opt.metropolis.largeStep = float(a.number(0, 1)); }},
-    {"--sigma", "S", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: a small step moves each number by a normal of deviation S,\nwrapped into [0,1) (default 0.01)",
-     [](CL& cl, A& a) { cl.opt.metropolis.sigma = float(a.number(1e-6, 10)); }},
-    {"--bootstrap", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: independent samples that estimate the image's\n"
-     "normalisation b and choose the chains' starts in proportion to their\n"
-     "brightness (default 100000 for pssmlt, 200000 for mlt, 1000000 for mmlt,\nwhich spreads them over the path lengths)",
-     [](CL& cl, A& a) { cl.opt.metropolis.bootstrap = int(a.integer(1, 1e8)); }},
-    {"--chains", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: Markov chains, each its own random stream\n(default 1024 for mlt, 256 otherwise)",
-     [](CL& cl, A& a) { cl.opt.metropolis.chains = int(a.integer(1, 1e6)); }},
-    {"--mutations", "LIST", {Method::MLT}, "--method mlt", "mlt: Veach's mutations to use, among bidir, lens, caustic and multichain,\n"
-     "comma-separated; bidir is always among them (default: all four)",
-     [](CL& cl, A& a) { cl.opt.metropolis.mutations = a.mutationList(); }},
-    {"--chain-short-paths", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: the chains render paths of one and two segments too\n"
-     "(by default a bdpt sample per pixel renders them, and the chains the rest)",
-     [](CL& cl, A&) { cl.opt.metropolis.chainShortPaths = true; }},
-    {"--maxdepth", "D", {}, "", "at most D bounces (scattering vertices) per path (default 32)",
-     [](CL& cl, A& a) { cl.opt.maxDepth = int(a.integer(0, 10000)); }},
-    {"--roulette", "R", kLightPathMethods, kLightPathName, "lt, ir, bdpt, vcm and the Metropolis methods' bdpt samples (mlt's and\n"
-     "mmlt's own walks have chosen lengths): how subpaths end: throughput (q from\n"
-     "the throughput after --rr-start bounces, as pt and nee), albedo (q = the\n"
-     "material's albedo at every vertex, counted in bdpt's MIS densities) or off\n"
-     "(only --maxdepth); default albedo",
-     [](CL& cl, A& a) { cl.opt.roulette = a.choice<Roulette>("roulette", kRouletteNames); }},
-    {"--rr-start", "N", {}, "", "pt, nee (and --roulette throughput): Russian roulette from bounce N on\n"
-     "(default 3); N > --maxdepth turns it off (lecture notes, page 9)",
-     [](CL& cl, A& a) { cl.opt.rrStart = int(a.integer(0, 10001)); }},
-    {nullptr, "", {}, "", "Deliberate mistakes (slides: \"Non-symmetric scattering\")", nullptr},
-    {"--symmetric-refraction", "", {}, "", "swap the two refraction rules: eye paths scale refracted radiance\n"
-     "like power (no eta^2), light paths scale power like radiance (eta^2)",
-     [](CL& cl, A&) { cl.conventions.symmetricRefraction = true; }},
-    {"--no-adjoint-correction", "", kLightPathMethods, kLightPathName, "light paths use the shading-normal BSDF unchanged (not its adjoint)",
-     [](CL& cl, A&) { cl.conventions.noAdjointCorrection = true; }},
-    {"--fixed-ray-offset", "", {}, "", "push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)\n"
-     "instead of the hit point's error bound (see tests/thin-gap.scene)",
-     [](CL& cl, A&) { cl.conventions.fixedRayOffset = true; }},
-    {"--delta-density-one", "", kBdptFamily, kBdptFamilyName, "bdpt, vcm, Metropolis: after a mirror or glass, store the MIS densities\n"
-     "as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy\ns = 0",
-     [](CL& cl, A&) { cl.conventions.deltaDensityOne = true; }},
-    {"--fixed-start", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: every chain starts from one fixed state (the first bootstrap\n"
-     "sample that carries light) instead of one chosen in proportion to its\n"
-     "brightness: start-up bias, visible at short runs",
-     [](CL& cl, A&) { cl.opt.metropolis.fixedStart = true; }},
-    {"--no-scramble", "", {}, "", "--sampler sobol without its random scrambles: every pixel draws the same\n"
-     "point in each pass, so neighbouring pixels' film positions, bounces and\n"
-     "lamp points move together (a biased, patterned image)",
-     [](CL& cl, A&) { cl.opt.noScramble = true; }},
-    {nullptr, "", {}, "", "Sampling", nullptr},
-    {"--spp", "N", {}, "", "N passes of one sample per pixel (default 16)", [](CL& cl, A& a) { cl.opt.spp = int(a.integer(1, 1e8)); }},
-    {"--time", "SECONDS", {}, "", "render passes until SECONDS of CPU time are spent, all threads together\n"
-     "(replaces --spp): a busy machine gives the same image, later; two threads\n"
-     "finish in about half as many wall seconds",
-     [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7); }},
-    {"--wall-time", "SECONDS", {}, "", "render passes until SECONDS of wall-clock time have passed (replaces --spp)",
-     [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7), cl.opt.wallTime = true; }},
-    {"--sampler", "S", {}, "", "where each pixel sample's numbers come from: sobol (default), the points\n"
-     "of an Owen-scrambled Sobol sequence in its first 32 dimensions (PCG32\n"
-     "past them), or random (independent PCG32 numbers throughout)",
-     [](CL& cl, A& a) { cl.opt.sampler = a.choice<Sampler>("sampler", kSamplerNames); }},
-    {"--seed", "S", {}, "", "seed of every pixel's random stream and scrambles (default 1)", [](CL& cl, A& a) { cl.opt.seed = uint64_t(a.integer(0, 9e15)); }},
-    {"--threads", "N", {}, "", "worker threads (default: all cores); the image does not depend on N",
-     [](CL& cl, A& a) { cl.opt.threads = int(a.integer(1, 1024)); }},
-    {nullptr, "", {}, "", "Output", nullptr},
-    {"--out", "FILE.png", {}, "", "PNG file (default render.png); the PFM goes to FILE.pfm", [](CL& cl, A& a) { cl.out = a.value(); }},
-    {"--res", "WxH", {}, "", "override the scene's resolution (e.g. --res 128x128)",
-     [](CL& cl, A& a) {
-         std::string v = a.value();
-         char tail = 0;
-         if (std::sscanf(v.c_str(), "%dx%d%c", &cl.width, &cl.height, &tail) != 2 || cl.width < 1 || cl.height < 1 ||
-             cl.width > 16384 || cl.height > 16384)
-             a.fail("option --res needs WIDTHxHEIGHT, each 1 to 16384, got '" + printable(v) + "'");
-         if (double(cl.width) * cl.height > 64e6) a.fail("option --res: " + printable(v) + " is larger than 64 megapixels (as in scene files)");
-     }},
-    {"--exposure", "STOPS", {}, "", "scale the PNG by 2^STOPS (the PFM stays linear)",
-     [](CL& cl, A& a) { cl.exposure = float(a.number(-50, 50)), cl.exposureGiven = true; }},
-    {"--quiet", "", {}, "", "no summary line", [](CL& cl, A&) { cl.quiet = true; }},
-    {"--help", "", {}, "", "this text", [](CL& cl, A&) { cl.help = true; }},
-    {nullptr, "", {}, "", "Exit status: 0 done, 1 an output file cannot be written, 2 bad scene file or option.", nullptr},
-};
+inline const std::vector<OptionRow<CommandLine>> kOptions = [] {
+    using CL = CommandLine;  // the table's setters are short lambdas
+    using A = ArgReader;
+    return std::vector<OptionRow<CommandLine>>{
+        {nullptr, "", {}, "", "usage: bdpt SCENE [options]\n"
+         "Renders SCENE (see README: scene format) with one of the slides' methods; writes a PNG (sRGB)\n"
+         "and, beside it, a PFM with the linear values. For example:\n"
+         "  ./bdpt scenes/cornell.scene --method bdpt --spp 64 --out build/cornell.png\n\nMethod", nullptr},
+        {"--method", "M", {}, "", methodHelp(),
+         [](CL& cl, A& a) { cl.opt.method = a.choice<Method>("method", kMethodNames); }},
+        {"--mis", "", {Method::NEE}, "--method nee", "nee: weight light and BSDF sampling with the power heuristic",
+         [](CL& cl, A&) { cl.opt.mis = true; }},
+        {"--vpls", "N", {Method::IR}, "--method ir", "ir: light paths traced per pass, each leaving VPLs (default 16)",
+         [](CL& cl, A& a) { cl.opt.ir.vplPaths = int(a.integer(1, 1e6)); }},
+        {"--clamp", "C", {Method::IR}, "--method ir", "ir: bound the geometry term G by C (panel (e)); prints the energy removed",
+         [](CL& cl, A& a) { cl.opt.ir.clamp = float(a.number(1e-30, 1e30)); }},
+        {"--heuristic", "H", kBdptFamily, kBdptFamilyName, "bdpt, vcm, and the Metropolis methods' bdpt samples: MIS weights balance\n"
+         "(default), power, max (the slides' maximum heuristic) or uniform (1 /\nnumber of strategies able to make the path)",
+         [](CL& cl, A& a) { cl.opt.heuristic = a.choice<Heuristic>("heuristic", kHeuristicNames); }},
+        {"--radius", "R", {Method::VCM}, "--method vcm", "vcm: merging radius r_0 of the first pass (default: one pixel's footprint\n"
+         "where the central camera ray meets the scene); 0: no merging, as bdpt.\n"
+         "vcm keeps a pass's light subpaths, about 140 bytes per light vertex (the\n"
+         "vertex, and a grid record if mergeable), 1 to 6 light vertices per pixel on\n"
+         "the scenes",
+         [](CL& cl, A& a) { cl.opt.vcm.radius = float(a.number(0, 1e30)); }},
+        {"--alpha", "A", {Method::VCM}, "--method vcm", "vcm: radius schedule r(n) = r_0 n^((A-1)/2) in pass n, 0 < A <= 1\n(default 0.75)",
+         [](CL& cl, A& a) { cl.opt.vcm.alpha = float(a.number(1e-3, 1)); }},
+        {"--strategies", "DIR", {Method::BDPT, Method::VCM}, "--method bdpt and vcm", "bdpt, vcm: also write one image per strategy (s,t) up to --strategy-length\n"
+         "(vcm: and one of all merges per path length), unweighted and MIS-weighted,\n"
+         "into DIR",
+         [](CL& cl, A& a) { cl.strategiesDir = a.value(); }},
+        {"--strategy-length", "K", {Method::BDPT, Method::VCM}, "--method bdpt and vcm (with --strategies)",
+         "longest path (segments) with per-strategy images (default 5)", [](CL& cl, A& a) { cl.strategyLength = int(a.integer(1, 12)); }},
+        {"--large-step", "P", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: probability of a large step, every number drawn afresh (0.3)",
+         [](CL& cl, A& a) { cl.opt.metropolis.largeStep = float(a.number(0, 1)); }},
+        {"--sigma", "S", kPrimarySample, "--method pssmlt and mmlt", "pssmlt, mmlt: a small step moves each number by a normal of deviation S,\nwrapped into [0,1) (default 0.01)",
+         [](CL& cl, A& a) { cl.opt.metropolis.sigma = float(a.number(1e-6, 10)); }},
+        {"--bootstrap", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: independent samples that estimate the image's\n"
+         "normalisation b and choose the chains' starts in proportion to their\n"
+         "brightness (default 100000 for pssmlt, 200000 for mlt, 1000000 for mmlt,\nwhich spreads them over the path lengths)",
+         [](CL& cl, A& a) { cl.opt.metropolis.bootstrap = int(a.integer(1, 1e8)); }},
+        {"--chains", "N", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: Markov chains, each its own random stream\n(default 1024 for mlt, 256 otherwise)",
+         [](CL& cl, A& a) { cl.opt.metropolis.chains = int(a.integer(1, 1e6)); }},
+        {"--mutations", "LIST", {Method::MLT}, "--method mlt", "mlt: Veach's mutations to use, among bidir, lens, caustic and multichain,\n"
+         "comma-separated; bidir is always among them (default: all four)",
+         [](CL& cl, A& a) { cl.opt.metropolis.mutations = a.mutationList(); }},
+        {"--chain-short-paths", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: the chains render paths of one and two segments too\n"
+         "(by default a bdpt sample per pixel renders them, and the chains the rest)",
+         [](CL& cl, A&) { cl.opt.metropolis.chainShortPaths = true; }},
+        {"--maxdepth", "D", {}, "", "at most D bounces (scattering vertices) per path (default 32)",
+         [](CL& cl, A& a) { cl.opt.maxDepth = int(a.integer(0, 10000)); }},
+        {"--roulette", "R", kLightPathMethods, kLightPathName, "lt, ir, bdpt, vcm and the Metropolis methods' bdpt samples (mlt's and\n"
+         "mmlt's own walks have chosen lengths): how subpaths end: throughput (q from\n"
+         "the throughput after --rr-start bounces, as pt and nee), albedo (q = the\n"
+         "material's albedo at every vertex, counted in bdpt's MIS densities) or off\n"
+         "(only --maxdepth); default albedo",
+         [](CL& cl, A& a) { cl.opt.roulette = a.choice<Roulette>("roulette", kRouletteNames); }},
+        {"--rr-start", "N", {}, "", "pt, nee (and --roulette throughput): Russian roulette from bounce N on\n"
+         "(default 3); N > --maxdepth turns it off (lecture notes, page 9)",
+         [](CL& cl, A& a) { cl.opt.rrStart = int(a.integer(0, 10001)); }},
+        {nullptr, "", {}, "", "Deliberate mistakes (slides: \"Non-symmetric scattering\")", nullptr},
+        {"--symmetric-refraction", "", {}, "", "swap the two refraction rules: eye paths scale refracted radiance\n"
+         "like power (no eta^2), light paths scale power like radiance (eta^2)",
+         [](CL& cl, A&) { cl.conventions.symmetricRefraction = true; }},
+        {"--no-adjoint-correction", "", kLightPathMethods, kLightPathName, "light paths use the shading-normal BSDF unchanged (not its adjoint)",
+         [](CL& cl, A&) { cl.conventions.noAdjointCorrection = true; }},
+        {"--fixed-ray-offset", "", {}, "", "push new rays off surfaces by the rule of thumb 5e-5 (1 + max|p|)\n"
+         "instead of the hit point's error bound (see tests/thin-gap.scene)",
+         [](CL& cl, A&) { cl.conventions.fixedRayOffset = true; }},
+        {"--delta-density-one", "", kBdptFamily, kBdptFamilyName, "bdpt, vcm, Metropolis: after a mirror or glass, store the MIS densities\n"
+         "as 1 (pbrt's convention) instead of the true ones: caustics go to the noisy\ns = 0",
+         [](CL& cl, A&) { cl.conventions.deltaDensityOne = true; }},
+        {"--fixed-start", "", kMetropolis, kMetropolisName, "mlt, pssmlt, mmlt: every chain starts from one fixed state (the first bootstrap\n"
+         "sample that carries light) instead of one chosen in proportion to its\n"
+         "brightness: start-up bias, visible at short runs",
+         [](CL& cl, A&) { cl.opt.metropolis.fixedStart = true; }},
+        {"--no-scramble", "", {}, "", "--sampler sobol without its random scrambles: every pixel draws the same\n"
+         "point in each pass, so neighbouring pixels' film positions, bounces and\n"
+         "lamp points move together (a biased, patterned image)",
+         [](CL& cl, A&) { cl.opt.noScramble = true; }},
+        {nullptr, "", {}, "", "Sampling", nullptr},
+        {"--spp", "N", {}, "", "N passes of one sample per pixel (default 16)", [](CL& cl, A& a) { cl.opt.spp = int(a.integer(1, 1e8)); }},
+        {"--time", "SECONDS", {}, "", "render passes until SECONDS of CPU time are spent, all threads together\n"
+         "(replaces --spp): a busy machine gives the same image, later; two threads\n"
+         "finish in about half as many wall seconds",
+         [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7); }},
+        {"--wall-time", "SECONDS", {}, "", "render passes until SECONDS of wall-clock time have passed (replaces --spp)",
+         [](CL& cl, A& a) { cl.opt.seconds = a.number(1e-3, 1e7), cl.opt.wallTime = true; }},
+        {"--sampler", "S", {}, "", "where each pixel sample's numbers come from: sobol (default), the points\n"
+         "of an Owen-scrambled Sobol sequence in its first 32 dimensions (PCG32\n"
+         "past them), or random (independent PCG32 numbers throughout)",
+         [](CL& cl, A& a) { cl.opt.sampler = a.choice<Sampler>("sampler", kSamplerNames); }},
+        {"--seed", "S", {}, "", "seed of every pixel's random stream and scrambles (default 1)", [](CL& cl, A& a) { cl.opt.seed = uint64_t(a.integer(0, 9e15)); }},
+        {"--threads", "N", {}, "", "worker threads (default: all cores); the image does not depend on N",
+         [](CL& cl, A& a) { cl.opt.threads = int(a.integer(1, 1024)); }},
+        {nullptr, "", {}, "", "Output", nullptr},
+        {"--out", "FILE.png", {}, "", "PNG file (default render.png); the PFM goes to FILE.pfm", [](CL& cl, A& a) { cl.out = a.value(); }},
+        {"--res", "WxH", {}, "", "override the scene's resolution (e.g. --res 128x128)",
+         [](CL& cl, A& a) {
+             std::string v = a.value();
+             char tail = 0;
+             if (std::sscanf(v.c_str(), "%dx%d%c", &cl.width, &cl.height, &tail) != 2 || cl.width < 1 || cl.height < 1 ||
+                 cl.width > 16384 || cl.height > 16384)
+                 a.fail("option --res needs WIDTHxHEIGHT, each 1 to 16384, got '" + printable(v) + "'");
+             if (double(cl.width) * cl.height > 64e6) a.fail("option --res: " + printable(v) + " is larger than 64 megapixels (as in scene files)");
+         }},
+        {"--exposure", "STOPS", {}, "", "scale the PNG by 2^STOPS (the PFM stays linear)",
+         [](CL& cl, A& a) { cl.exposure = float(a.number(-50, 50)), cl.exposureGiven = true; }},
+        {"--quiet", "", {}, "", "no summary line", [](CL& cl, A&) { cl.quiet = true; }},
+        {"--help", "", {}, "", "this text", [](CL& cl, A&) { cl.help = true; }},
+        {nullptr, "", {}, "", "Exit status: 0 done, 1 an output file cannot be written, 2 bad scene file or option.", nullptr},
+    };
+}();
 
 // --help, from a table: each option's name and value, its help beside it from column 20.
 template <class Line>

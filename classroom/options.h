@@ -19,15 +19,14 @@ struct ClassroomLine : CommandLine {
     std::string ratioPanel;      // --ratio-panel mean|error: the second entry over the first
 };
 
-using CR = ClassroomLine;
 
 // The rows after --quiet: the live image and the side-by-side figure.
-inline std::vector<OptionRow<CR>> liveRows() {
+inline std::vector<OptionRow<ClassroomLine>> liveRows() {
     return {{"--live", "SECONDS", {}, "",
          "while rendering, rewrite the PNG from the passes so far at most every\n"
          "SECONDS (whole, by rename): an image viewer that reloads it shows the image\n"
          "converging (on a projector, say); --log is written as the passes finish",
-         [](CR& cl, A& a) { cl.liveSeconds = a.number(1e-3, 1e6); }},
+         [](ClassroomLine& cl, ArgReader& a) { cl.liveSeconds = a.number(1e-3, 1e6); }},
         {"--side-by-side", "\"M1,M2 OPTIONS,...\"", {}, "",
          "render several methods at once into one titled 16:9 image (1920x1080 where\n"
          "the images fit): each entry a method and its own options (\"nee,nee --mis,\n"
@@ -39,7 +38,7 @@ inline std::vector<OptionRow<CR>> liveRows() {
          "Each method's PFM goes beside the PNG (FILE-1-pt.pfm, ...). An entry may\n"
          "name its own scene (\"bdpt,bdpt scenes/sds-point.scene\"): one method on\n"
          "two scenes",
-         [](CR& cl, A& a) {
+         [](ClassroomLine& cl, ArgReader& a) {
              std::stringstream list(a.value());
              for (std::string entry; std::getline(list, entry, ',');) cl.sideBySide.push_back(entry);
              if (cl.sideBySide.size() < 2 || cl.sideBySide.size() > 8) a.fail("--side-by-side needs 2 to 8 methods, separated by commas");
@@ -47,20 +46,20 @@ inline std::vector<OptionRow<CR>> liveRows() {
         {"--title", "TEXT", {}, "",
          "--side-by-side's first title line (the second always names the scene, its\n"
          "size and the samples or CPU time each panel had)",
-         [](CR& cl, A& a) { cl.title = a.value(); }},
+         [](ClassroomLine& cl, ArgReader& a) { cl.title = a.value(); }},
         {"--ratio-panel", "mean|error", {}, "",
          "--side-by-side of two entries (right, then a deliberate mistake): a third\n"
          "panel, the second over the first in blocks; mean: the ratio of their means,\n"
          "grey where within the noise; error: of their squared errors against\n"
          "--ref (a mistake that adds noise, not bias); the overall ratio in the title",
-         [](CR& cl, A& a) {
+         [](ClassroomLine& cl, ArgReader& a) {
              cl.ratioPanel = a.value();
              if (cl.ratioPanel != "mean" && cl.ratioPanel != "error") a.fail("--ratio-panel is mean or error");
          }}};
 }
 
 // The rows after --help: a reference's error, the log, the tools that read images and logs.
-inline std::vector<OptionRow<CR>> referenceRows() {
+inline std::vector<OptionRow<ClassroomLine>> referenceRows() {
     return {{nullptr, "", {}, "",
          "Ctrl-C finishes the pass in flight, writes the completed passes and exits with status 130;\n"
          "a second Ctrl-C (a second or more after the first) abandons the render: no file, status 3.\n"
@@ -70,30 +69,30 @@ inline std::vector<OptionRow<CR>> referenceRows() {
         {"--ref", "FILE.pfm", {}, "",
          "reference image (same resolution): after every pass compute RMSE, relMSE,\n"
          "the relative bias of the mean and the firefly measure against it",
-         [](CR& cl, A& a) { cl.refPath = a.value(); }},
+         [](ClassroomLine& cl, ArgReader& a) { cl.refPath = a.value(); }},
         {"--log", "FILE.csv", {}, "",
          "one row per pass: scene, method, options, pass, spp, cpu_seconds, rmse, relmse,\n"
          "mean, bias, firefly, nan_count, rmse_without_lamp (the lamp's pixels and their\n"
          "neighbours left out); error columns empty without --ref; written as the\n"
          "passes finish, flushed after each (tail -f follows the run)",
-         [](CR& cl, A& a) { cl.logPath = a.value(); }},
+         [](ClassroomLine& cl, ArgReader& a) { cl.logPath = a.value(); }},
         {"--compare", "A.pfm B.pfm", {}, "", "print rmse, relmse and bias of A against B (e.g. two seeds of a reference)",
-         [](CR& cl, A& a) { cl.pfmA = a.value(), cl.pfmB = a.value(); }},
+         [](ClassroomLine& cl, ArgReader& a) { cl.pfmA = a.value(), cl.pfmB = a.value(); }},
         {"--average", "A.pfm B.pfm", {}, "",
          "write the mean of A and B to --out (required; and its PFM): a reference\nfrom two seeds",
-         [](CR& cl, A& a) { cl.average = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
+         [](ClassroomLine& cl, ArgReader& a) { cl.average = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
         {"--ratio", "A.pfm B.pfm", {}, "",
          "write A/B over 4x4-pixel blocks to --out (required) in false colour\n"
          "(white: equal, red: A brighter, blue: A darker, full colour at one stop; the\n"
          "PFM holds the ratios), enlarged to at least 560 pixels under the files' names,\n"
          "the ratio of the means and the colour key; print its percentiles: where two\n"
          "methods differ",
-         [](CR& cl, A& a) { cl.ratio = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
+         [](ClassroomLine& cl, ArgReader& a) { cl.ratio = true, cl.pfmA = a.value(), cl.pfmB = a.value(); }},
         {"--failure-table", "LOG.csv...", {}, "",
          "print the failure table (markdown, as Appendix A of the notes has it) from\n"
          "such logs: slope of log(rmse) against log(CPU seconds) (rmse without the lamp's\n"
          "pixels where the log has it), bias, fireflies, NaN count",
-         [](CR& cl, A& a) {
+         [](ClassroomLine& cl, ArgReader& a) {
              cl.failureLogs.assign(a.args.begin() + a.i + 1, a.args.end());
              if (cl.failureLogs.empty()) a.fail("--failure-table needs log files");
              a.i = a.args.size();
@@ -101,17 +100,17 @@ inline std::vector<OptionRow<CR>> referenceRows() {
 }
 
 // The tools' rows, each placed after the lecture's row it follows in --help.
-inline std::map<std::string, std::vector<OptionRow<CR>>> toolRows() {
+inline std::map<std::string, std::vector<OptionRow<ClassroomLine>>> toolRows() {
     return {
         {"--threads", {{"--profile", "", {}, "",
            "render on one thread and print the time per sample split into tracing,\n"
            "MIS weights, merging (vcm) and the rest (shading, sampling, camera, film),\n"
            "from the CPU's time stamp counter; the clock adds a few per cent",
-           [](CR& cl, A&) { cl.profile = true; }}}},
+           [](ClassroomLine& cl, ArgReader&) { cl.profile = true; }}}},
         {"--exposure", {{"--overwrite", "", {}, "",
            "let --out replace a file the project ships (a scene's reference, a figure of\n"
            "the notes: anything under scenes/ or lecture_notes/); refused without it",
-           [](CR& cl, A&) { cl.overwrite = true; }}}},
+           [](ClassroomLine& cl, ArgReader&) { cl.overwrite = true; }}}},
         {"--quiet", liveRows()},
         {"--help", referenceRows()},
     };
@@ -129,14 +128,14 @@ inline const std::map<std::string, std::string>& classroomAdditions() {
 
 // The lecture's table (its help texts, with ./bdpt's additions) with the tools' rows among its own,
 // and the exit statuses with the tools'.
-inline std::vector<OptionRow<CR>> classroomOptions() {
-    const std::map<std::string, std::vector<OptionRow<CR>>> tools = toolRows();
+inline std::vector<OptionRow<ClassroomLine>> classroomOptions() {
+    const std::map<std::string, std::vector<OptionRow<ClassroomLine>>> tools = toolRows();
     static std::deque<std::string> helps;  // the texts the rows point to (a deque does not move them)
-    std::vector<OptionRow<CR>> table;
+    std::vector<OptionRow<ClassroomLine>> table;
     for (const OptionRow<CommandLine>& o : kOptions) {
-        OptionRow<CR> row{o.name, o.value, o.methods, o.whose, o.help, nullptr};
+        OptionRow<ClassroomLine> row{o.name, o.value, o.methods, o.whose, o.help, nullptr};
         if (o.name && classroomAdditions().count(o.name)) row.help = helps.emplace_back(std::string(o.help) + classroomAdditions().at(o.name)).c_str();
-        if (o.apply) row.apply = [lecture = o.apply](CR& cl, A& a) { lecture(cl, a); };
+        if (o.apply) row.apply = [lecture = o.apply](ClassroomLine& cl, ArgReader& a) { lecture(cl, a); };
         if (!o.name && std::string(o.help).rfind("Exit status", 0) == 0)
             row.help = "Exit status: 0 done, 1 an output file cannot be written (checked before rendering), 2 bad scene\n"
                        "file or option, 3 abandoned by a second Ctrl-C (nothing written), 4 out of memory (nothing\n"
@@ -149,8 +148,8 @@ inline std::vector<OptionRow<CR>> classroomOptions() {
     }
     return table;
 }
-inline const std::vector<OptionRow<CR>>& classroomTable() {
-    static const std::vector<OptionRow<CR>> table = classroomOptions();
+inline const std::vector<OptionRow<ClassroomLine>>& classroomTable() {
+    static const std::vector<OptionRow<ClassroomLine>> table = classroomOptions();
     return table;
 }
 
@@ -161,7 +160,7 @@ inline std::string suggestedOption(const std::string& word) {
         {"--integrator", "--method"}, {"--mis-heuristic", "--heuristic"}, {"--reference", "--ref"}};
     if (otherNames.count(word)) return otherNames.at(word);
     std::vector<std::string> names;
-    for (const OptionRow<CR>& o : classroomTable())
+    for (const OptionRow<ClassroomLine>& o : classroomTable())
         if (o.name) names.push_back(o.name);
     return closestWords(word, names);
 }
