@@ -8,7 +8,10 @@
 //   metrics.h      the error against a reference;  figures.h  labels, the ratio, the pyramid
 //   side_by_side.h several methods in one titled figure
 // and here the main flow: one render, the failure table and the image tools (--compare,
-// --average, --ratio). One translation unit: make builds ./bdpt from this file.
+// --average, --ratio). One translation unit: make builds ./bdpt from this file. Beside it, not
+// in ./bdpt: physics.h (the densities and weights from their definitions, for every judge of the
+// renderer), definitions.h (where each function is defined), workshop/ (the figures), web/ (the
+// page) and homework/ (the cutter and the grader).
 // ============================================================================================
 #ifndef BDPT_NO_MAIN  // this program's main, not the lecture's
 #define BDPT_NO_MAIN
