@@ -152,6 +152,17 @@ inline double pathDensity(const Scene& scene, const std::vector<PathVertex>& x, 
     return (s > 0 ? subpathDensity(scene, x, 0, s - 1, roulette) : 1) * subpathDensity(scene, x, n - 1, s, roulette);
 }
 
+// The weight that misWeight, the code judged, gives strategy s of the path x: from the subpaths
+// that strategy would have made (rebuild) and the connection connectStrategy would have evaluated.
+inline double rebuiltWeight(const Scene& scene, const std::vector<PathVertex>& x, int s, Heuristic h, double mergeEta = 0) {
+    thread_local std::vector<PathVertex> y, z;
+    rebuild(scene, x, s, y, z);
+    const int t = int(x.size()) - s;
+    Connection c;
+    if (s > 0) evalConnection(scene, y[size_t(s - 1)], z[size_t(t - 1)], c);
+    return misWeight(scene, y, s, z, t, h, c, mergeEta);
+}
+
 // The densities of every strategy able to make x, by s; with vcm's mergeEta > 0 also the merge at
 // every non-specular x_i (0 < i < n-1), keyed kMergeKey + i: the light subpath x_0..x_i and the
 // camera subpath x_{n-1}..x_i both sampled up to x_i, times eta_VCM (notes, page 15).

@@ -72,7 +72,6 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
     opt.heuristic = h;
     opt.roulette = roulette;
     WeightCheck wc;
-    std::vector<PathVertex> y, z;
     // k >= 2: more than one strategy
     forEachConnectedStrategy(scene, opt, samples, seed, 7, 3, [&](const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera,
                                                                   int t, const Connection& connection, Vec3) {
@@ -81,11 +80,7 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
         std::map<int, double> density, weight;
         for (int s2 = 0; s2 < int(x.size()); ++s2) {
             if (!able(scene, x, s2)) continue;
-            rebuild(scene, x, s2, y, z);
-            int t2 = int(x.size()) - s2;
-            Connection c2;  // what connectStrategy would have evaluated for (s2, t2)
-            if (s2 > 0) evalConnection(scene, y[s2 - 1], z[t2 - 1], c2);
-            float w = misWeight(scene, y, s2, z, t2, h, c2, mergeEta);
+            float w = float(rebuiltWeight(scene, x, s2, h, mergeEta));
             density[s2] = pathDensity(scene, x, s2, roulette);
             weight[s2] = w;
             sum += w;
@@ -415,17 +410,14 @@ static double pinholeAreaDensity(const Camera& cam, D3 p, D3 n) {  // 1/(A cos^3
 // The weights of s = 0 and t = 1 on the path `points` (lamp, chain, D), against the heuristic of
 // the true densities pS0 and pT1.
 static void checkChainWeights(const Scene& scene, const std::vector<D3>& points, double pS0, double pT1) {
-    std::vector<PathVertex> x = chainPath(scene, points), y, z;
+    std::vector<PathVertex> x = chainPath(scene, points);
     const int n = int(x.size());
     std::map<int, double> density = {{0, pS0}, {n - 1, pT1}};
     for (Heuristic h : {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform})
         for (int s : {0, n - 1}) {
             CAPTURE(int(h));
             CAPTURE(s);
-            rebuild(scene, x, s, y, z);
-            Connection c;
-            if (s > 0) evalConnection(scene, y[s - 1], z[0], c);
-            CHECK(misWeight(scene, y, s, z, n - s, h, c, 0) == doctest::Approx(definitionWeight(h, density, s)).epsilon(1e-4));
+            CHECK(rebuiltWeight(scene, x, s, h) == doctest::Approx(definitionWeight(h, density, s)).epsilon(1e-4));
         }
 }
 

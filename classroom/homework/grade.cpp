@@ -1027,18 +1027,13 @@ struct WeightCheck {
 };
 WeightCheck checkWeights(const Scene& sc, Heuristic h, int samples) {
     WeightCheck wc;
-    std::vector<PathVertex> y, z;
     forEachLitPath(sc, samples, 77, [&](const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera, int t) {
         std::vector<PathVertex> x = joinPath(light, s, camera, t);
         double sum = 0;
         std::map<int, double> density, weight;
         for (int s2 = 0; s2 < int(x.size()); ++s2) {
             if (!able(sc, x, s2)) continue;
-            rebuild(sc, x, s2, y, z);
-            int t2 = int(x.size()) - s2;
-            Connection c2;
-            if (s2 > 0) evalConnection(sc, y[size_t(s2 - 1)], z[size_t(t2 - 1)], c2);
-            double w = misWeight(sc, y, s2, z, t2, h, c2, 0);
+            double w = rebuiltWeight(sc, x, s2, h);
             if (!std::isfinite(w)) w = 1e9;
             density[s2] = pathDensity(sc, x, s2, RenderOptions().roulette);
             weight[s2] = w;
