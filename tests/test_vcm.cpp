@@ -197,6 +197,24 @@ TEST_CASE("the radius schedule r_i = r_0 i^((alpha-1)/2), and each light pass di
     }
 }
 
+// What ./bdpt prints of the schedule: the first pass's radius and the last one's, each against
+// the closed form (not against the code's own record of it).
+TEST_CASE("./bdpt's vcm line: the radius of pass 1 is r_0 and that of the last pass r_0 n^((alpha-1)/2)") {
+    std::ostringstream out, err;
+    REQUIRE(runCommandLine({"scenes/cornell.scene", "--method", "vcm", "--radius", "20", "--alpha", "0.5", "--res", "16x12", "--spp", "4",
+                            "--threads", "1", "--out", "build/tmp/vcm-radius.png"}, out, err) == 0);
+    const std::string text = out.str();
+    MESSAGE(text);
+    const size_t at = text.find("vcm: radius ");
+    REQUIRE(at != std::string::npos);
+    double first = 0, last = 0;
+    int lastPass = 0;
+    REQUIRE(std::sscanf(text.c_str() + at, "vcm: radius %lf in pass 1, %lf in pass %d", &first, &last, &lastPass) == 3);
+    CHECK(lastPass == 4);
+    CHECK(first == doctest::Approx(20).epsilon(1e-5));
+    CHECK(last == doctest::Approx(20 * std::pow(4.0, -0.25)).epsilon(1e-5));  // 14.14
+}
+
 // -- The max heuristic with merges: one geometry per path -----------------------------------
 // In the furnace many strategies have exactly equal densities, connections and merges alike.
 // Evaluating a merge's weight with the light vertex y's densities on one side and the camera
