@@ -315,6 +315,32 @@ TEST_CASE("no method produces a NaN or an infinity on any scene") {
         }
 }
 
+// A pass during which the render could not run is left out of --profile's split: its wall time
+// went to no part of the sample. The render is held still (SIGSTOP) three times while its passes
+// run; each hold lies inside a pass (they take all but a sliver of the time), which its thread then
+// did not run undisturbed, so the line must say fewer passes were kept than run. The holds make
+// the condition; nothing here is measured against a clock.
+TEST_CASE("--profile leaves out of its split the passes during which the render was held still") {
+    std::remove("build/tmp/profile-held.csv");
+    BackgroundRun r = startInBackground(bdptProgram() + " scenes/cornell.scene --res 64x64 --spp 300 --profile --log build/tmp/profile-held.csv "
+                                        "--out build/tmp/profile-held.png", "build/tmp/profile-held.txt");
+    for (int passes : {2, 40, 80}) {
+        REQUIRE(waitFor([passes] { return loggedPasses("build/tmp/profile-held.csv", "cornell,bdpt") >= passes; }));
+        kill(r.pid, SIGSTOP);
+        usleep(300000);
+        kill(r.pid, SIGCONT);
+    }
+    REQUIRE(r.wait() == 0);
+    const std::string out = r.output();
+    MESSAGE(out);
+    int kept = 0, passes = 0;
+    const size_t at = out.find("; split over the ");
+    REQUIRE(at != std::string::npos);  // "split over all N passes" would mean a held pass was kept
+    REQUIRE(std::sscanf(out.c_str() + at, "; split over the %d of %d passes", &kept, &passes) == 2);
+    CHECK(passes == 300);
+    CHECK(kept < passes);
+}
+
 // The profile clock charges time to the part running: a part that interrupts another (MIS weights
 // inside a merge, tracing inside either) hands the clock back to it when it ends. Handed to "the
 // rest" instead, the merge's time after the weights would be charged there. The clock is one the
