@@ -9,6 +9,8 @@
 #include "classroom/definitions.h"
 #include "homework/mistakes.h"
 #include <dirent.h>
+#include <poll.h>
+#include <pty.h>
 #include <functional>
 #include <locale>
 #include <set>

@@ -2,6 +2,8 @@
 // is done: output paths, options that do not apply, scene files from other editors and systems,
 // scenes that render but not as meant, Ctrl-C.
 #include "helpers.h"
+#include <poll.h>
+#include <pty.h>
 
 struct Run {
     int status;
@@ -495,6 +497,68 @@ TEST_CASE("--wall-time T ends at T seconds of the wall clock, whatever CPU time 
     const double wall = std::atof(out.c_str() + at + 22);
     CHECK(wall >= 1);        // not a timing threshold: the budget, 1 s of the wall clock, reached
     CHECK(cpuUsed < 0.5);    // not a timing threshold: the budget, 1 s, of which CPU seconds would have spent all
+}
+
+// The progress bar as a terminal shows it (it is drawn only on one: the program runs on a pseudo-
+// terminal here). Its percentage is the budget's clock: --time counts CPU seconds, --wall-time the
+// wall clock's. A render held still (SIGSTOP) for half its budget shows, once it runs again, the
+// same percentage as before under --time (no CPU was spent) and half the bar more under
+// --wall-time. The hold makes the condition; the bar's own frames are what is read.
+struct TerminalRun {
+    pid_t pid = -1;
+    int fd = -1;
+    std::string screen;  // everything the program wrote to its terminal
+    // Reads what the program writes for `seconds` (a hold's length; it ends early if it exits).
+    void readFor(double seconds) {
+        for (double waited = 0; waited < seconds; waited += 0.05) {
+            pollfd p{fd, POLLIN, 0};
+            if (poll(&p, 1, 50) > 0) {
+                char b[4096];
+                ssize_t n = read(fd, b, sizeof b);
+                if (n <= 0) return;
+                screen.append(b, size_t(n));
+            }
+        }
+    }
+    int lastPercent() const {  // the newest frame's "NN%" ("[####....]  NN%  pass P  ETA ...")
+        size_t at = screen.rfind("%  pass ");
+        if (at == std::string::npos || at < 3) return -1;
+        return std::atoi(screen.c_str() + at - 3);
+    }
+};
+inline TerminalRun startInTerminal(const std::string& command) {
+    TerminalRun t;
+    t.pid = forkpty(&t.fd, nullptr, nullptr, nullptr);
+    if (t.pid == 0) {
+        execl("/bin/bash", "bash", "-c", ("exec " + command).c_str(), (char*)nullptr);
+        _exit(127);
+    }
+    return t;
+}
+TEST_CASE("the progress bar on a terminal counts --time's CPU seconds and --wall-time's wall clock") {
+    for (const char* budget : {"--time", "--wall-time"}) {
+        CAPTURE(budget);
+        TerminalRun t = startInTerminal(bdptProgram() + " scenes/cornell.scene --res 48x48 --threads 1 " + budget +
+                                        " 6 --out build/tmp/fh_bar.png");
+        REQUIRE(t.pid > 0);
+        REQUIRE(waitFor([&] { t.readFor(0.1); return t.lastPercent() >= 3; }));
+        const int before = t.lastPercent();
+        kill(t.pid, SIGSTOP);
+        usleep(3000000);  // half the budget
+        kill(t.pid, SIGCONT);
+        t.screen.clear();
+        REQUIRE(waitFor([&] { t.readFor(0.1); return t.lastPercent() >= 0; }));
+        t.readFor(0.3);
+        const int after = t.lastPercent();
+        MESSAGE(std::string(budget) << ": " << before << "% before the hold, " << after << "% after it");
+        if (std::string(budget) == "--time") CHECK(after - before < 25);
+        else CHECK(after - before >= 40);
+        int status = 0;
+        kill(t.pid, SIGINT);
+        t.readFor(0.2);
+        waitpid(t.pid, &status, 0);
+        close(t.fd);
+    }
 }
 
 // A folder that mkdir itself refuses: the reason is the file system's, as `mkdir` prints it
