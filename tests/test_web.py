@@ -626,6 +626,21 @@ def references(browser):
           "page 2's 24x24 button: its --ref honoured, the panel's RMSE ./bdpt's against tests/refs/cornell-direct.pfm",
           "./bdpt: %s; page: %r" % (m and m.group(0), p["stats"]))
 
+    # A reference is the scene's own, by its whole name: sds at 96x64 is measured against
+    # web-refs/sds-96x64.pfm, never sds-point's (a right render then shows a bias of +40%);
+    # cornell at 50x50 never against cornell-glass-50x50.pfm.
+    chosen = []
+    for scene, res, want, never in (("sds", "96x64", "against web-refs/sds-96x64.pfm", "sds-point"), ("cornell", "50x50", "", "cornell-glass")):
+        browser.js("bdptPage.selectScene('scenes/%s.scene')" % scene)
+        browser.js("bdptPage.setEntries(['bdpt'])")
+        browser.js("bdptPage.setOptions({resolution: '%s', spp: 1, seconds: 0, seed: 1})" % res)
+        browser.js("bdptPage.run()")
+        stats = browser.js("bdptPage.panels()")[0]["stats"]
+        chosen.append((scene, res, want in stats and never not in stats, stats))
+    check(all(ok for _, _, ok, _ in chosen), "a panel's reference is its scene's own by the whole name: sds at 96x64 against web-refs/sds-96x64.pfm, "
+          "cornell at 50x50 never against cornell-glass's", "; ".join("%s %s: %r" % (sc, r, st) for sc, r, ok, st in chosen if not ok))
+    browser.js("bdptPage.selectScene('scenes/cornell.scene')")
+
     # 4: every notes button whose scene has a reference measures an error at its size (the old
     # page: 18 of 45 said "no error"): each button is run until its panels have started, when
     # each knows the size at which it meets its reference (0: none), then stopped.

@@ -63,6 +63,13 @@ static Image boxAverage(const Image& img, int f) {
     return out;
 }
 
+// NAME-WxH.pfm, of this scene's NAME exactly: sds-point-96x64.pfm is sds-point's, not sds's.
+static bool isSizedReference(const std::string& file, const std::string& stem) {
+    int w = 0, h = 0, end = 0;
+    return file.rfind(stem + "-", 0) == 0 && std::sscanf(file.c_str() + stem.size() + 1, "%dx%d.pfm%n", &w, &h, &end) == 2 &&
+           size_t(end) + stem.size() + 1 == file.size() && w > 0 && h > 0;
+}
+
 // The reference for a panel of width x height: the one asked for ("none", "given": the page's
 // own, or a path in the module: a notes command's --ref), or else, of the scene's committed
 // reference (scenes/refs/NAME.pfm) and the page's own for the sizes the notes use
@@ -85,7 +92,7 @@ static void chooseReference(const std::string& sceneName, const std::string& ask
     std::vector<std::string> candidates = {"/scenes/refs/" + stem + ".pfm"};
     if (DIR* dir = opendir("/web-refs")) {
         while (dirent* e = readdir(dir))
-            if (std::string name = e->d_name; name.rfind(stem + "-", 0) == 0 && hasExtension(name, ".pfm")) candidates.push_back("/web-refs/" + name);
+            if (std::string name = e->d_name; isSizedReference(name, stem)) candidates.push_back("/web-refs/" + name);
         closedir(dir);
     }
     int best = 0;
