@@ -736,19 +736,21 @@ def lessons(browser):
         panels = browser.js("bdptPage.panels()")
         mistaken = [p for p in panels if flag in p["entry"]]
         right = {p["entry"]: p for p in panels if flag not in p["entry"]}
-        verdicts = []
+        verdicts, ratios = [], []
         for p in mistaken:
             plain = " ".join(w for w in p["entry"].split() if w != flag)
-            ratio = re.search(r"ratio of means ([0-9.]+) against", p["stats"])
+            ratio = re.search(r"ratio of means ([0-9.]+) against (.+?)(?: ·|$)", re.sub(r"<[^>]+>", "", p["stats"]))
             r = right.get(plain)
+            # the ratio is the mistake's mean over the right method's, the panel it names
+            ratios.append(bool(ratio and r and ratio.group(2).strip() == plain and abs(float(ratio.group(1)) / (p["mean"] / r["mean"]) - 1) < 2e-4))
             if r and r["rmse"] is not None and p["rmse"] is not None:
                 verdicts.append(p["rmseWithoutLamp"] > r["rmseWithoutLamp"])  # against the reference: the mistake errs more
             elif ratio:
                 verdicts.append(abs(float(ratio.group(1)) - 1) > 0.05)  # no reference: the means differ visibly
         linked = page.startswith({"--symmetric-refraction": "14", "--no-adjoint-correction": "13", "--delta-density-one": "10m", "--no-scramble": "09",
                                   "--fixed-ray-offset": "06", "--fixed-start": "16"}[flag])
-        check(verdicts and all(verdicts) and all("ratio of means" in p["stats"] for p in mistaken) and linked,
-              "the lesson %s: the mistake's error above the right method's (or its mean visibly off), the ratio of means shown, its notes page open" % flag,
+        check(verdicts and all(verdicts) and ratios and all(ratios) and linked,
+              "the lesson %s: the mistake's error above the right method's (or its mean visibly off), the ratio of means shown (the mistake's mean over the right one's), its notes page open" % flag,
               "page %s; %s" % (page, "; ".join("%s: RMSE %s, %s" % (p["entry"], p["rmseWithoutLamp"], re.sub(r"<[^>]+>", "", p["stats"])[:160]) for p in panels)))
         if flag == "--delta-density-one":  # 7: the pyramid shows the first such panel, then the clicked one
             first = browser.js("bdptPage.pyramidSums().entry")
@@ -888,16 +890,21 @@ def path_view(browser):
             if len(kinds) == 4 and kinds[0] == "lamp" and all(k == "surface" for k in kinds[1:3]) and len(worked_ok) < 4:
                 points = ["%.6f,%.6f,%.6f" % tuple(p["p"]) for p in chosen["vertices"][:3]]
                 out = subprocess.run(["build/worked-path", "path", "scenes/cornell.scene", "64x64", *points], cwd=ROOT, capture_output=True, text=True)
-                rows = {int(r[0]): [float(r[4]), float(r[5]), float(r[6])] for r in (l.strip("|").split("|") for l in out.stdout.split("\n") if re.match(r"\| \d", l))}
+                table = [l.strip("|").split("|") for l in out.stdout.split("\n") if re.match(r"\| \d", l)]
+                rows = {int(r[0]): [float(r[4]), float(r[5]), float(r[6])] for r in table}
+                p_worked = {int(r[0]): float(r[2]) for r in table}
                 page = {st["s"]: st["w"][:3] for st in chosen["strategies"] if not st["merge"]}
                 worst = max(abs(rows[s][h] - (page.get(s) or [0, 0, 0])[h]) for s in rows for h in range(3)) if rows else 1
-                worked_ok.append(worst < 2e-3)
-                details.append("pixel (%d,%d) s=%d t=%d: largest difference %.2g" % (x, y, chosen["s"], chosen["t"], worst))
+                # the table as shown: each strategy's p and p / p_{s,t} (the chosen connection's), page 7's numbers
+                shown = {int(re.match(r"s=(\d+)", cells[0]).group(1)): (float(cells[1]), float(cells[2])) for cells in v["table"] if cells[0].startswith("s=")}
+                worst_p = max(max(abs(p / p_worked[s] - 1), abs(r / (p_worked[s] / p_worked[chosen["s"]]) - 1)) for s, (p, r) in shown.items()) if shown else 1
+                worked_ok.append(worst < 2e-3 and worst_p < 2e-3 and len(shown) >= 3)
+                details.append("pixel (%d,%d) s=%d t=%d: largest difference %.2g in the weights, %.2g in p and p / p_{s,t}" % (x, y, chosen["s"], chosen["t"], worst, worst_p))
     drawn = v["drawn"]
     check(checked >= 10 and sums_ok and self_ok and drawn["camera"] >= 2 and drawn["sideCamera"] >= 2 and drawn["lines"] >= 2,
           "the path view: %d connections drawn at 6 pixels, each path's weights sum to 1 in the balance, power and max heuristics, "
           "the renderer's w_{s,t} its own row" % checked, "sums %s, own rows %s, drawn %r" % (sums_ok, self_ok, drawn))
-    check(len(worked_ok) >= 2 and all(worked_ok), "the path view's weights of %d paths of length 3: build/worked-path's from the densities' definitions" % len(worked_ok),
+    check(len(worked_ok) >= 2 and all(worked_ok), "the path view's densities, ratios and weights of %d paths of length 3, as shown: build/worked-path's from the densities' definitions" % len(worked_ok),
           "; ".join(details))
     check(lit >= 4 and all(own_sample), "the path view draws the pixel's own sample: at %d lit pixels of 6 the drawn connections' sum of C w is the pixel's value in that pass" % lit,
           "; ".join(own_details))

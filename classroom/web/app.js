@@ -1272,6 +1272,7 @@ window.bdptPage = {
                  connections: v.sample.connections.map((x) => ({ s: x.s, t: x.t, C: x.C, w: x.w, weight: x.weight, pixel: x.pixel, strategies: x.strategies.length })),
                  chosen: { s: c.s, t: c.t, w: c.w, vertices: pathVertices(v.sample, c).map((x) => ({ p: x.p, kind: x.kind })), strategies: c.strategies },
                  sums: [...document.querySelectorAll("#path-tables tr.sums td[data-sum]")].map((td) => Number(td.dataset.sum)),
+                 table: [...document.querySelectorAll("#path-tables table.strategies tr[data-s]")].map((tr) => [...tr.cells].map((td) => td.textContent)),
                  drawn: { camera: $("path-image").querySelectorAll("circle.camera").length, light: $("path-image").querySelectorAll("circle.light").length,
                           sideCamera: $("path-side").querySelectorAll("circle.camera").length, lines: $("path-image").querySelectorAll("polyline").length } };
     },
