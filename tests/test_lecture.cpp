@@ -2,6 +2,7 @@
 // does, bit for bit, and every method's image at a fixed seed is what it was.
 #include "helpers.h"
 #include "homework/mistakes.h"
+#include <regex>
 
 // FNV-1a 64 of an image's floats, rows from the top: the fingerprint tests/fixed-seed-images.txt keeps.
 static uint64_t pixelHash(const Image& img) {
@@ -289,6 +290,51 @@ TEST_CASE("the homework's cuts still fit bdpt.cpp, and the file they make compil
             ++commentsAbove;
         }
     CHECK(commentsAbove == 0);
+}
+
+// What the homework tells a student (the TODOs and the README, from classroom/homework/tasks)
+// states no formula of its own: it says what to compute and where to read it. A formula it does
+// show is quoted from the notes, in backticks, as a page the task names writes it; so an
+// acceptance or a scale factor written upside down in a TODO is found here, not by a student.
+static std::vector<std::string> unquotedFormulas(const std::string& text) {
+    static const std::regex formula("\\b(min|max|sqrt|exp|log|abs|pow)\\s*\\(|[A-Za-z0-9_)\\]}|]\\s*/\\s*[A-Za-z0-9_(\\[{|]|\\^\\s*[0-9{(]|"
+                                    "\\|[A-Za-z_][A-Za-z0-9_.]*\\|");
+    std::vector<std::string> found;
+    const std::string bare = std::regex_replace(text, std::regex("`[^`]*`"), "``");
+    for (std::sregex_iterator it(bare.begin(), bare.end(), formula), end; it != end; ++it) found.push_back(it->str());
+    return found;
+}
+TEST_CASE("the homework's words state no formula but quotes from the notes pages of their task") {
+    CHECK(unquotedFormulas("accept with a = min(1, f(u)/f(v))").size() == 2);  // the rule bites
+    CHECK(unquotedFormulas("scale by (eta_o/eta_i)^2").size() == 2);
+    CHECK(unquotedFormulas("the factor |wo.ns| over |wo.ng|").size() == 2);
+    CHECK(unquotedFormulas("the acceptance `min(1, f(v)/f(u))` of page 16; Transport::Radiance, (s,t)").empty());
+    std::istringstream tasks(readFile("classroom/homework/tasks"));
+    std::string task, notes;
+    int lines = 0, quotes = 0;
+    for (std::string line; std::getline(tasks, line);) {
+        if (line.rfind("task ", 0) == 0) task = line;
+        if (line.rfind("notes ", 0) == 0) notes = line.substr(6);
+        const bool words = line.rfind("teaches ", 0) == 0 || line.rfind("told ", 0) == 0 || line.rfind("  todo ", 0) == 0;
+        if (!words) continue;
+        ++lines;
+        CAPTURE(task);
+        CAPTURE(line);
+        CHECK(unquotedFormulas(line).empty());
+        static const std::regex quoted("`([^`]*)`");
+        for (std::sregex_iterator it(line.begin(), line.end(), quoted), end; it != end; ++it) {
+            const std::string quote = (*it)[1];
+            bool onPage = false;
+            std::istringstream pages(notes);
+            for (std::string page; pages >> page;)
+                onPage = onPage || readFile("lecture_notes/" + page).find(quote) != std::string::npos;
+            CAPTURE(quote);
+            CHECK((onPage || !std::regex_search(quote, std::regex("[/^|(]"))));  // a formula quoted is the notes'
+            ++quotes;
+        }
+    }
+    MESSAGE(lines << " lines of the homework's words, " << quotes << " quotes");
+    CHECK(lines > 40);
 }
 
 // tests/homework/mistakes.txt pins texts of bdpt.cpp (the lines each plausible mistake changes):

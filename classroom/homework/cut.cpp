@@ -5,6 +5,7 @@
 // the task list's file:line, before anything is written.
 //   cut TASKS_FILE SOURCE OUT_DIR [IDS]     IDS: "H1 H2 ..." (default: every task but the optional)
 //   cut TASKS_FILE --list [IDS]             the grader's task list (ID points title) on stdout
+//   cut TASKS_FILE SOURCE OUT_DIR IDS --answered   the same with a right answer in each cut's place
 //   cut --index FILE...                     every definition of the files (classroom/definitions.h)
 #include <algorithm>
 #include <cctype>
@@ -21,6 +22,7 @@ struct Cut {
     int line = 0;                     // in the task list
     std::string function, from, to;   // to empty: the whole body
     std::vector<std::string> stub, todo;
+    std::vector<std::string> answer;  // cut-lines: a right answer's lines (make test-homework writes them in)
 };
 struct Task {
     int line = 0;
@@ -68,7 +70,8 @@ static std::vector<Task> readTasks(const std::string& file) {
             if (t.cuts.empty()) fail(where, "'" + key + "' before the task's first cut");
             if (key == "stub") t.cuts.back().stub.push_back(rest);
             else if (key == "todo") t.cuts.back().todo.push_back(rest);
-            else fail(where, "unknown key '" + key + "' under a cut (stub, todo)");
+            else if (key == "answer") t.cuts.back().answer.push_back(rest);
+            else fail(where, "unknown key '" + key + "' under a cut (stub, todo, answer)");
         } else if (key == "cut" || key == "cut-lines") {
             Cut c;
             c.line = n;
@@ -85,8 +88,10 @@ static std::vector<Task> readTasks(const std::string& file) {
         else fail(where, "unknown key '" + key + "' (slides, notes, time, teaches, told, cut, cut-lines)");
     }
     for (const Task& t : tasks)
-        for (const Cut& c : t.cuts)
+        for (const Cut& c : t.cuts) {
             if (c.stub.empty() && c.todo.empty()) fail(file + ":" + std::to_string(c.line), "a cut needs a todo");
+            if (!c.to.empty() && c.answer.empty()) fail(file + ":" + std::to_string(c.line), "a cut-lines needs an answer (what a right student writes)");
+        }
     return tasks;
 }
 
@@ -145,12 +150,19 @@ static std::string todoBlock(const Task& t, const Cut& c, const std::string& ind
            commentLines("Until it is written, the stub below stands here: it compiles and renders, black or wrong.", indent);
 }
 
-static std::string applyCut(const std::string& source, const Task& t, const Cut& c, const std::string& tasksFile) {
+// answered: the TODO followed by a right answer instead of the stub (the function's own body, or
+// a cut-lines' `answer` lines): what a student who solved the task hands in.
+static std::string applyCut(const std::string& source, const Task& t, const Cut& c, const std::string& tasksFile, bool answered) {
     const std::string where = tasksFile + ":" + std::to_string(c.line), code = definitions::codeOnly(source);
     definitions::Definition d;
     if (!definitions::topLevelFunction(definitions::index(source), c.function, d)) fail(where, "no definition of " + c.function + "() in the source");
     if (c.to.empty()) {  // the whole body
         std::string body = "\n" + todoBlock(t, c, "    ");
+        if (answered) {  // the function's own body, after the TODO (a one-line body on a line of its own)
+            const std::string inner = source.substr(d.open + 1, d.end - d.open - 1);
+            body += inner.find('\n') == std::string::npos ? "    " + trim(inner) + "\n" : inner.substr(inner.find('\n') + 1);
+            return source.substr(0, d.open + 1) + body + source.substr(d.end);
+        }
         for (const std::string& p : parameterNames(source.substr(d.paren + 1, d.close - d.paren - 1))) body += "    (void)" + p + ";\n";
         for (const std::string& s : c.stub) body += "    " + s + "\n";
         return source.substr(0, d.open + 1) + body + source.substr(d.end);
@@ -166,7 +178,7 @@ static std::string applyCut(const std::string& source, const Task& t, const Cut&
         from = above;
     const std::string indent = source.substr(from, source.find_first_not_of(' ', from) - from);
     std::string lines = todoBlock(t, c, indent);
-    for (const std::string& s : c.stub) lines += indent + s + "\n";
+    for (const std::string& s : answered ? c.answer : c.stub) lines += indent + s + "\n";
     return source.substr(0, from) + lines + source.substr(to);
 }
 
@@ -231,6 +243,8 @@ static int printIndex(int argc, char** argv) {
 
 int main(int argc, char** argv) {
     if (argc >= 3 && std::string(argv[1]) == "--index") return printIndex(argc, argv);
+    bool answered = false;  // --answered (last): each cut's place holds a right answer, for make test-homework
+    if (argc > 1 && std::string(argv[argc - 1]) == "--answered") answered = true, --argc;
     if (argc < 4 && !(argc == 3 && std::string(argv[2]) == "--list")) {
         std::fprintf(stderr, "usage: %s TASKS_FILE SOURCE OUT_DIR [\"H1 H2 ...\"] | %s TASKS_FILE --list [\"H1 H2 ...\"]\n", argv[0], argv[0]);
         return 2;
@@ -270,7 +284,7 @@ int main(int argc, char** argv) {
         s << in.rdbuf();
         std::string source = s.str();
         for (const Task* t : chosen)
-            for (const Cut& c : t->cuts) source = applyCut(source, *t, c, tasksFile);
+            for (const Cut& c : t->cuts) source = applyCut(source, *t, c, tasksFile, answered);
         auto write = [](const std::string& path, const std::string& text) {
             std::ofstream f(path + ".tmp", std::ios::binary);
             f << text;

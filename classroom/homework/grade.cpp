@@ -195,6 +195,7 @@ Fit fitModels(const std::vector<double>& measured, const std::vector<double>& se
     for (size_t k = 1; k < models.size(); ++k)
         if (misfit(models[k]) < misfit(models[best])) best = k;
     if (best > 0 && misfit(models[best]) <= 1) f.text += ": " + models[best].diagnosis;
+    else if (models.size() > 1) f.text += ": no classic mistake fits these numbers (read the formula again on the notes' page)";
     return f;
 }
 

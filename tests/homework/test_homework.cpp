@@ -102,7 +102,7 @@ void runJobs(const std::vector<Job>& jobs) {
 struct Results {
     std::vector<Mistake> mistakes;
     std::vector<Report> reports;  // one per mistake
-    Report solution, stubs;
+    Report solution, stubs, answered;
     std::string solutionSource;
 };
 const Results& results() {
@@ -140,6 +140,12 @@ const Results& results() {
         shell("make -s homework HOMEWORK_DIR=" + kDir + "/folder TASKS='H1 H2 H3 H4 H5 H6' > " + kDir + "/make-homework.log 2>&1");
         shell("make -s -C " + kDir + "/folder grade > " + kDir + "/stubs.log 2>&1");
         out.stubs = readReport(readFile(kDir + "/stubs.log"));
+        // then a right answer written into the file handed out (each TODO kept, its stub replaced
+        // by the task's answer), graded again in the same folder by its own Makefile
+        shell("mkdir -p " + kDir + "/answered/grader && build/homework-tools/cut classroom/homework/tasks bdpt.cpp " + kDir +
+              "/answered 'H1 H2 H3 H4 H5 H6' --answered > /dev/null && cp " + kDir + "/answered/bdpt.cpp " + kDir + "/folder/bdpt.cpp");
+        shell("make -s -C " + kDir + "/folder grade > " + kDir + "/answered.log 2>&1");
+        out.answered = readReport(readFile(kDir + "/answered.log"));
         return out;
     }();
     return r;
@@ -165,6 +171,16 @@ std::vector<std::string> cutLines(const std::string& solution, const std::string
 TEST_CASE("the solution, bdpt.cpp, gets every point of every task") {
     const Report& r = results().solution;
     MESSAGE(r.text);
+    REQUIRE(r.max == 60);
+    CHECK(r.total == 60);
+}
+
+TEST_CASE("a right answer written into the file handed out, graded in the same folder after its stubs, gets every point") {
+    const Report& r = results().answered;
+    MESSAGE(r.text);
+    const std::string answered = readFile(kDir + "/answered/bdpt.cpp");
+    CHECK(answered.find("TODO (H3, ") != std::string::npos);  // the handed-out file, its TODOs kept
+    CHECK(answered.find("float etaScale = 1;") == std::string::npos);  // its stubs replaced
     REQUIRE(r.max == 60);
     CHECK(r.total == 60);
 }
@@ -230,11 +246,11 @@ TEST_CASE("a crash, a NaN, an endless loop and a 10-GB allocation cost their tas
 TEST_CASE("the student's folder holds no line of a cut body, and the notes none either") {
     results();
     const std::string folder = kDir + "/folder";
-    const std::string handedOut = readFile(folder + "/bdpt.cpp");
+    const std::string handedOut = readFile(folder + "/grader/handed-out.cpp");  // the folder's bdpt.cpp as handed out (it was answered since)
     std::vector<std::string> cut = cutLines(results().solutionSource, handedOut);
     MESSAGE(cut.size() << " code lines cut from bdpt.cpp");
     CHECK(cut.size() > 60);
-    std::vector<std::string> files = {folder + "/bdpt.cpp", folder + "/README.md", folder + "/Makefile", folder + "/grader/grade.cpp", folder + "/grader/physics.h",
+    std::vector<std::string> files = {folder + "/README.md", folder + "/Makefile", folder + "/grader/grade.cpp", folder + "/grader/physics.h",
                                       folder + "/grader/tasks.txt", folder + "/grader/handed-out.cpp"};
     DIR* notes = opendir("lecture_notes");
     for (dirent* e; notes && (e = readdir(notes));)
