@@ -12,6 +12,7 @@
 struct Mistake {
     std::string kind, task, what, words;
     std::vector<std::pair<std::string, std::string>> edits;  // replace, with
+    std::vector<std::string> never;  // words the diagnosis must not hold (another mistake's)
 };
 inline std::vector<Mistake> readMistakes(const std::string& path = "tests/homework/mistakes.txt") {
     std::vector<Mistake> list;
@@ -32,6 +33,9 @@ inline std::vector<Mistake> readMistakes(const std::string& path = "tests/homewo
         } else if (line.rfind("  replace ", 0) == 0 && !list.empty()) {
             list.back().edits.push_back({line.substr(10), ""});
             open = &list.back().edits.back().first;
+        } else if (line.rfind("  never ", 0) == 0 && !list.empty()) {
+            list.back().never.push_back(line.substr(8));
+            open = nullptr;
         } else if (line.rfind("  with ", 0) == 0 && !list.empty() && !list.back().edits.empty()) {
             list.back().edits.back().second = line.substr(7);
             open = &list.back().edits.back().second;

@@ -213,6 +213,10 @@ TEST_CASE("each plausible mistake loses its task's points and no other's, and th
         for (const auto& [task, p] : r.points)
             if (task != m.task) CHECK(p.first == p.second);
         CHECK(squeeze(r.notesOf(m.task)).find(m.words) != std::string::npos);
+        for (const std::string& other : m.never) {  // a mistake that is not this one is not named
+            CAPTURE(other);
+            CHECK(squeeze(r.notesOf(m.task)).find(other) == std::string::npos);
+        }
         MESSAGE(m.task << " " << m.what << ": " << r.points.at(m.task).first << " / " << r.points.at(m.task).second);
         ++mistakes, ++perTask[m.task];
     }
