@@ -146,7 +146,9 @@ help:
 	@echo "make homework   a student's folder, build/homework/: bdpt.cpp with the tasks cut out, a README, make grade"
 	@echo "                (TASKS=\"H2 H5\": some; seconds, and 10 s the first time for the grader's data)"
 	@echo "make grade      grades build/homework/bdpt.cpp, or HOMEWORK=path/to/bdpt.cpp, by the physics (20 s)"
-	@echo "make test-homework  the grader against the solution, the stubs and 27 mistakes (about 9 CPU minutes, 5 minutes)"
+	@echo "make test-homework  the grader against the solution, the stubs, 31 mistakes, a class and Gradescope (about 12 CPU minutes)"
+	@echo "make grade-class SUBMISSIONS=dir  a folder per student graded with the hidden checks: build/class/grades.csv, report.md"
+	@echo "make gradescope the teacher's grader for Gradescope: build/gradescope/autograder.zip (seconds)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
 	@echo "make class      a class's figures for a projector (six panels at equal samples and time, pyramid,"
 	@echo "                mistakes, sds, Metropolis, error-vs-time charts): build/class/ (6.5 CPU minutes, 4.5 minutes;"
@@ -299,19 +301,20 @@ uneven: build/uneven
 clean:
 	rm -rf bdpt build *.png *.pfm
 
-.PHONY: all run test test-sanitize test-homework homework grade web serve-web test-web bench-web fuzz bench efficiency metropolis uneven refs web-refs charts panels class figures help clean FORCE
+.PHONY: all run test test-sanitize test-homework homework grade grade-class gradescope web serve-web test-web bench-web fuzz bench efficiency metropolis uneven refs web-refs charts panels class figures help clean FORCE
 
 # ---- Homework (classroom/homework/): tasks cut from bdpt.cpp, graded by the physics.
-# make homework [TASKS="H2 H5"]: the student's folder build/homework/ (bdpt.cpp with the tasks'
-# bodies as TODOs and stubs, the scenes, README.md, a Makefile with make and make grade, the
-# grader and its data, which the complete renderer makes once: build/homework-data/).
+# make homework [TASKS="H2 H5"] [ANSWERS=1]: the student's folder build/homework/ (bdpt.cpp with the
+# tasks' bodies as TODOs and stubs, the scenes, the notes without their answers for the instructor
+# (ANSWERS=1 keeps them), README.md, a Makefile with make and make grade, the grader and its data,
+# which the complete renderer makes once: build/homework-data/).
 # make grade [HOMEWORK=path/to/bdpt.cpp]: grades that file (by default build/homework/bdpt.cpp)
 # against the same data. make test-homework: the solution full marks, the stubs none, every
 # mistake of tests/homework/mistakes.txt named and no other task's points lost.
 build/homework-tools/cut: classroom/homework/cut.cpp classroom/definitions.h
 	@mkdir -p build/homework-tools
 	$(CXX) -O1 -std=c++17 -Wall -Wextra -o $@ $<
-build/homework-tools/grade-solution: classroom/homework/grade.cpp classroom/physics.h bdpt.cpp build/flags
+build/homework-tools/grade-solution: classroom/homework/grade.cpp classroom/homework/harness.h classroom/physics.h bdpt.cpp build/flags
 	@mkdir -p build/homework-tools
 	$(CXX) $(CXXFLAGS) -I. -Iclassroom -o $@ $< $(LDLIBS)
 HOMEWORK_DATA_INPUTS := scenes/refs/cornell.pfm scenes/refs/cornell-point.pfm tests/refs/cornell-direct.pfm scenes/cornell.scene scenes/energy-generator.scene
@@ -327,8 +330,9 @@ homework: build/homework-tools/cut build/homework-data/numbers.txt
 	@rm -rf $(HOMEWORK_DIR).tmp && mkdir -p $(HOMEWORK_DIR).tmp/grader $(HOMEWORK_DIR).tmp/scenes
 	@build/homework-tools/cut classroom/homework/tasks bdpt.cpp $(HOMEWORK_DIR).tmp "$(TASKS)" | sed 's|$(HOMEWORK_DIR).tmp/|$(HOMEWORK_DIR)/|'
 	@cp scenes/*.scene $(HOMEWORK_DIR).tmp/scenes/
-	@cp -r lecture_notes $(HOMEWORK_DIR).tmp/
-	@cp classroom/homework/grade.cpp classroom/physics.h $(HOMEWORK_DIR).tmp/grader/
+	@mkdir -p $(HOMEWORK_DIR).tmp/lecture_notes && cp -r lecture_notes/figures $(HOMEWORK_DIR).tmp/lecture_notes/
+	@for page in lecture_notes/*.md; do awk -v keep=$(if $(ANSWERS),1,0) -f classroom/homework/strip_answers.awk $$page > $(HOMEWORK_DIR).tmp/$$page; done
+	@cp classroom/homework/grade.cpp classroom/homework/harness.h classroom/physics.h $(HOMEWORK_DIR).tmp/grader/
 	@cp -r build/homework-data $(HOMEWORK_DIR).tmp/grader/data
 	@cp classroom/homework/Makefile.student $(HOMEWORK_DIR).tmp/Makefile
 	@cp $(HOMEWORK_DIR).tmp/bdpt.cpp $(HOMEWORK_DIR).tmp/grader/handed-out.cpp
@@ -342,13 +346,38 @@ grade: build/homework-tools/cut build/homework-data/numbers.txt
 	@test -f "$(HOMEWORK)" || { echo "make grade: no $(HOMEWORK) (make homework writes build/homework/; or make grade HOMEWORK=path/to/bdpt.cpp)"; exit 2; }
 	@mkdir -p $(GRADE_DIR)/grader
 	@cmp -s "$(HOMEWORK)" $(GRADE_DIR)/bdpt.cpp || cp "$(HOMEWORK)" $(GRADE_DIR)/bdpt.cpp
-	@for f in classroom/homework/grade.cpp classroom/physics.h; do cmp -s $$f $(GRADE_DIR)/grader/$$(basename $$f) || cp $$f $(GRADE_DIR)/grader/; done
+	@for f in classroom/homework/grade.cpp classroom/homework/harness.h classroom/physics.h; do cmp -s $$f $(GRADE_DIR)/grader/$$(basename $$f) || cp $$f $(GRADE_DIR)/grader/; done
 	@cmp -s classroom/homework/Makefile.student $(GRADE_DIR)/Makefile || cp classroom/homework/Makefile.student $(GRADE_DIR)/Makefile
 	@ln -sfn ../../homework-data $(GRADE_DIR)/grader/data && ln -sfn ../../scenes $(GRADE_DIR)/scenes
 	@if [ -f $(dir $(HOMEWORK))grader/tasks.txt ]; then cp $(dir $(HOMEWORK))grader/tasks.txt $(GRADE_DIR)/grader/tasks.txt; \
 	  else build/homework-tools/cut classroom/homework/tasks --list "$(TASKS)" > $(GRADE_DIR)/grader/tasks.txt; fi
 	@echo "make grade: $(HOMEWORK), in $(GRADE_DIR)/"
 	@$(MAKE) --no-print-directory -C $(GRADE_DIR) grade $(if $(TASK),TASK=$(TASK))
+
+# A course's grading: the teacher's grader (grade.cpp with hidden.h's checks, -DBDPT_HIDDEN_CHECKS),
+# which no student's folder holds.
+# make grade-class SUBMISSIONS=dir [TASKS="H1 H2 ..."]: every student's folder of dir (each with its
+# bdpt.cpp) graded, two at a time: build/class/grades.csv, build/class/report.md (what the class got
+# wrong, and its chart build/class/mistakes.svg), each student's log in build/class/work/.
+grade-class: build/homework-tools/cut build/homework-data/numbers.txt
+	@test -n "$(SUBMISSIONS)" || { echo "make grade-class SUBMISSIONS=dir: a folder holding a folder per student, each with its bdpt.cpp"; exit 2; }
+	@mkdir -p build/class
+	@build/homework-tools/cut classroom/homework/tasks --list "$(TASKS)" > build/class/tasks.txt
+	@python3 classroom/homework/grade_class.py "$(SUBMISSIONS)" build/class build/class/tasks.txt build/homework-data $(GRADE_JOBS)
+
+# make gradescope [TASKS="H1 H2 ..."]: build/gradescope/autograder.zip, for Gradescope's autograder:
+# setup.sh and run_autograder at its root (classroom/homework/gradescope/), the teacher's grader,
+# its data and the scenes. Python's zipfile writes it (keeping run_autograder's mode).
+gradescope: build/homework-tools/cut build/homework-data/numbers.txt
+	@rm -rf build/gradescope/package && mkdir -p build/gradescope/package/grader build/gradescope/package/scenes
+	@cp classroom/homework/gradescope/setup.sh classroom/homework/gradescope/run_autograder build/gradescope/package/
+	@cp classroom/homework/grade.cpp classroom/homework/harness.h classroom/homework/hidden.h classroom/physics.h build/gradescope/package/grader/
+	@cp -r build/homework-data build/gradescope/package/grader/data
+	@cp scenes/*.scene build/gradescope/package/scenes/
+	@build/homework-tools/cut classroom/homework/tasks --list "$(TASKS)" > build/gradescope/package/grader/tasks.txt
+	@cd build/gradescope/package && rm -f ../autograder.zip.tmp && python3 -m zipfile -c ../autograder.zip.tmp setup.sh run_autograder grader scenes && \
+	  mv ../autograder.zip.tmp ../autograder.zip
+	@echo "make gradescope: build/gradescope/autograder.zip (tasks $$(cut -d' ' -f1 build/gradescope/package/grader/tasks.txt | tr '\n' ' '))"
 
 build/test_homework: tests/homework/test_homework.cpp tests/homework/mistakes.h
 	@mkdir -p build

@@ -6,7 +6,8 @@
 // to 1, and images the complete renderer made when the homework was handed out (grader/data/).
 // Each task runs in a child process with a CPU-seconds and a memory limit: a crash, an endless
 // loop or a huge allocation costs that task its points and says so; the others go on.
-//   grade [--task ID] [--data DIR] [--tasks FILE] [--cpu-limit S] [--seed N]   grade the tasks
+//   grade [--task ID] [--data DIR] [--tasks FILE] [--cpu-limit S] [--seed N] [--json FILE]   grade the tasks
+//     (--json: Gradescope's results.json; compiled with -DBDPT_HIDDEN_CHECKS, hidden.h's checks too)
 //   grade --write-data DIR                          make the data (run with the complete bdpt.cpp)
 // A mistake is named where its fingerprint is recognised: each check measures at several points
 // and compares the measurements with the physics and with what each classic mistake would give
@@ -14,27 +15,11 @@
 #define BDPT_NO_MAIN
 #include "bdpt.cpp"
 #include "physics.h"
-#include <csignal>
-#include <fcntl.h>
-#include <poll.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
+#include "harness.h"  // a check, its process with limits, the report and Gradescope's results.json
 
 namespace grade {
 
 std::string dataDir = "grader/data";
-
-// ---- what a check says: pass or fail, and for a failure what it expected, what it measured and,
-// where a mistake's fingerprint fits, the mistake in the slides' words with the notes' page.
-struct Outcome {
-    bool pass = false;
-    std::string text;
-};
-struct Check {
-    std::string name;
-    int points;
-    std::function<Outcome()> run;
-};
 
 std::string num(double x, int digits = 4) {
     char t[64];
@@ -157,8 +142,15 @@ struct Model {
 };
 struct Fit {
     bool pass = false;
-    std::string text;
+    std::string text, mistake;
 };
+// A diagnosis's first clause (up to its first colon, semicolon or bracket): how a class's report
+// names the mistake.
+std::string firstClause(const std::string& diagnosis) {
+    std::string c = diagnosis.substr(0, diagnosis.find_first_of(":;("));
+    while (!c.empty() && (c.back() == ' ' || c.back() == ',')) c.pop_back();
+    return c;
+}
 // measured[i] with standard error se[i] (0 for an exact computation) against the models; the
 // physics is models[0]. Passes where every point is within 4 standard errors and `tolerance` of it.
 Fit fitModels(const std::vector<double>& measured, const std::vector<double>& se, const std::vector<Model>& models, const std::string& what,
@@ -194,106 +186,9 @@ Fit fitModels(const std::vector<double>& measured, const std::vector<double>& se
     size_t best = 0;
     for (size_t k = 1; k < models.size(); ++k)
         if (misfit(models[k]) < misfit(models[best])) best = k;
-    if (best > 0 && misfit(models[best]) <= 1) f.text += ": " + models[best].diagnosis;
+    if (best > 0 && misfit(models[best]) <= 1) f.text += ": " + models[best].diagnosis, f.mistake = firstClause(models[best].diagnosis);
     else if (models.size() > 1) f.text += ": no classic mistake fits these numbers (read the formula again on the notes' page)";
     return f;
-}
-
-// ---- the processes: a task's checks in a child, with limits; its results as lines on a pipe
-struct TaskResult {
-    int points = 0, max = 0;
-    std::vector<std::string> notes;
-};
-bool gWriteFailed = false;
-void say(int fd, const std::string& line) {
-    std::string l = line + "\n";
-    for (char& ch : l) if (ch == '\n' && &ch != &l.back()) ch = ' ';
-    gWriteFailed = gWriteFailed || write(fd, l.data(), l.size()) != ssize_t(l.size());
-}
-
-void runChecks(const std::vector<Check>& checks, int fd) {
-    for (const Check& c : checks) {
-        say(fd, "CHECK\t" + c.name);
-        Outcome o;
-        try {
-            o = c.run();
-        } catch (const std::bad_alloc&) {
-            say(fd, "MEMORY");
-            _exit(3);
-        } catch (const std::exception& e) {
-            o = {false, std::string("stopped by an exception: ") + e.what()};
-        }
-        say(fd, std::string(o.pass ? "PASS\t" : "FAIL\t") + std::to_string(c.points) + "\t" + c.name + "\t" + o.text);
-    }
-    say(fd, "DONE");
-}
-
-const char* signalWords(int sig) {
-    switch (sig) {
-        case SIGXCPU: case SIGKILL: return "ran past its CPU-time limit: an endless loop? (a path that never ends, a loop whose index never moves)";
-        case SIGSEGV: case SIGBUS: return "crashed (segmentation fault): a pointer or an index out of range? (an empty subpath, camera[t] for t = size)";
-        case SIGFPE: return "crashed: an integer division by zero";
-        case SIGABRT: return "aborted: an exception escaping, or out of memory (the grader allows 2 GB)";
-        default: return "was killed by a signal";
-    }
-}
-
-TaskResult runTask(const std::vector<Check>& checks, double cpuSeconds) {
-    TaskResult r;
-    for (const Check& c : checks) r.max += c.points;
-    int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error("no pipe");
-    std::fflush(stdout);
-    pid_t pid = fork();
-    if (pid == 0) {
-        close(fds[0]);
-        rlimit cpu{rlim_t(cpuSeconds), rlim_t(cpuSeconds + 2)}, memory{rlim_t(2) << 30, rlim_t(2) << 30};
-        setrlimit(RLIMIT_CPU, &cpu);
-        setrlimit(RLIMIT_AS, &memory);
-        int devnull = open("/dev/null", O_WRONLY);
-        if (devnull >= 0) dup2(devnull, 1), dup2(devnull, 2);  // the student's prints: not the report's
-        runChecks(checks, fds[1]);
-        _exit(0);
-    }
-    close(fds[1]);
-    std::string text, current;
-    char buffer[4096];
-    // A hang's guard, not a clock: ten minutes without a word from a child that uses no CPU
-    // (one waiting forever) end it; a child computing is stopped by its CPU limit.
-    for (;;) {
-        pollfd p{fds[0], POLLIN, 0};
-        int ready = poll(&p, 1, 600000);
-        if (ready == 0) { kill(pid, SIGKILL); break; }
-        ssize_t n = read(fds[0], buffer, sizeof buffer);
-        if (n <= 0) break;
-        text.append(buffer, size_t(n));
-    }
-    close(fds[0]);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    std::istringstream lines(text);
-    bool done = false, memory = false;
-    int earned = 0;
-    for (std::string line; std::getline(lines, line);) {
-        std::vector<std::string> f;
-        std::stringstream ss(line);
-        for (std::string x; std::getline(ss, x, '\t');) f.push_back(x);
-        if (f[0] == "CHECK") current = f.size() > 1 ? f[1] : "";
-        else if (f[0] == "PASS") earned += std::stoi(f[1]);
-        else if (f[0] == "FAIL") r.notes.push_back(f[2] + ": " + (f.size() > 3 ? f[3] : "failed"));
-        else if (f[0] == "DONE") done = true;
-        else if (f[0] == "MEMORY") memory = true;
-    }
-    if (done && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-        r.points = earned;
-    } else {
-        std::string why = WIFSIGNALED(status) ? signalWords(WTERMSIG(status))
-                          : memory ? "ran out of memory (the grader allows 2 GB): an allocation that grows without end, or a size computed wrong?"
-                                   : "stopped before its checks ended (exit status " + std::to_string(WEXITSTATUS(status)) + ")";
-        r.notes.push_back("your code " + why + ", in the check '" + current + "': the task gets 0 points (fix it, and the other checks run again)");
-        r.points = 0;
-    }
-    return r;
 }
 
 // ---- scenes the checks build for themselves
@@ -369,7 +264,7 @@ Outcome ptFurnaceDepths() {
          each(series(1, 1))},
     };
     Fit f = fitModels(measured, std::vector<double>(4, 0.0), models, "pt in the furnace (albedo 0.5, Le 1) at --maxdepth 0, 1, 2, 3, no roulette", 1e-3);
-    return {f.pass, f.text};
+    return {f.pass, f.text, f.mistake};
 }
 
 Outcome ptFurnaceRoulette() {
@@ -388,7 +283,7 @@ Outcome ptFurnaceRoulette() {
                    "divides the beta it is given: keep the beta it changes; page 9)", {unweighted}},
     };
     Fit f = fitModels({e.imageMean}, {e.imageSe}, models, "pt in the furnace with Russian roulette (2 expected)", 0.004);
-    return {f.pass, f.text};
+    return {f.pass, f.text, f.mistake};
 }
 
 Outcome ptCornell() {
@@ -473,7 +368,7 @@ Outcome directUnderLamp() {
     };
     DirectSample d = directAt(s, kLampPoints, false, 20000);
     Fit f = fitModels(d.mean, d.se, models, "estimateDirect under a square lamp (4 points of the floor, 20000 samples each)", 0.01);
-    return {f.pass, f.text};
+    return {f.pass, f.text, f.mistake};
 }
 
 Outcome directBehindPlate() {
@@ -502,11 +397,11 @@ Outcome directPointLight() {
         for (double m : plain.mean) black = black && m == 0;
         if (black) f.text += ": a point light has no surface and no area: its cosine is 1 and its density the chance of choosing it "
                              "(lp.deltaPosition, lp.pdfArea; page 5)";
-        return {false, f.text};
+        return {false, f.text, f.mistake};
     }
     Fit g = fitModels(mis.mean, mis.se, models, "estimateDirect with mis under a point light", 1e-3);
     if (!g.pass) g.text += ": no BSDF sample can hit a point light, so its light sample keeps the whole weight (weight 1)";
-    return {g.pass, g.text};
+    return {g.pass, g.text, g.mistake};
 }
 
 Outcome directWithMis() {
@@ -539,7 +434,7 @@ Outcome directWithMis() {
     };
     DirectSample d = directAt(s, kLampPoints, true, 20000);
     Fit f = fitModels(d.mean, d.se, models, "estimateDirect with mis (the power heuristic) under a square lamp, 4 points", 0.01);
-    return {f.pass, f.text};
+    return {f.pass, f.text, f.mistake};
 }
 
 std::vector<Check> checksH1() {
@@ -629,9 +524,9 @@ Outcome cameraHidden() {
                        " given a pixel: no visibility test toward the eye (a shadow ray from x to the pinhole): light tracing lights what the camera cannot see"};
 }
 
-Outcome cameraImportance() {
-    Scene s = scene("scenes/cornell.scene", 32, 32);
-    const double A = s.camera.imageArea, N = 32.0 * 32;
+Outcome cameraImportanceAt(int width, int height) {
+    Scene s = scene("scenes/cornell.scene", width, height);
+    const double A = s.camera.imageArea, N = double(width) * height;
     std::vector<double> measured, zero, cosines, right, noCos, extraCos, notPerPath, twice, overD, noD;
     for (const SeenPoint& p : seenPoints(s)) {
         CameraConnection c = connectToCamera(s, p.sp);
@@ -653,12 +548,13 @@ Outcome cameraImportance() {
         {"1/d", "divided by the distance to the eye, not its square (G's 1/d^2)", overD},
         {"no 1/d^2", "the 1/d^2 of G between x and the eye is missing", noD},
     };
-    Fit f = fitModels(measured, zero, models, "connectToCamera's importance at " + std::to_string(measured.size()) + " points, against 1 / (A cos^3 d^2)", 2e-3);
+    Fit f = fitModels(measured, zero, models, "connectToCamera's importance at " + std::to_string(measured.size()) + " points of a " + std::to_string(width) +
+                                                  "x" + std::to_string(height) + " image, against 1 / (A cos^3 d^2)", 2e-3);
     bool none = !f.pass;
     for (double m : measured) none = none && m <= 0;
     if (none) f.text += ": no point of the image gets a positive importance: the direction whose W_j and cosine the camera gives is the one leaving "
                         "the pinhole toward x (-toCamera), cos theta = forward . (x - eye) / d";
-    return {f.pass, f.text};
+    return {f.pass, f.text, f.mistake};
 }
 
 // The pixels where the camera sees a lamp's front side, with the radiance it sees there (32 x 32
@@ -710,7 +606,7 @@ Outcome ltCornellPoint() {
 std::vector<Check> checksH2() {
     return {{"connectToCamera: the pixel that sees a point", 2, cameraPixels},
             {"connectToCamera: a point hidden from the eye", 1, cameraHidden},
-            {"connectToCamera: the importance", 3, cameraImportance},
+            {"connectToCamera: the importance", 3, [] { return cameraImportanceAt(32, 32); }},
             {"lt on cornell against the reference", 3, ltCornell},
             {"lt on cornell-point against the reference", 1, ltCornellPoint}};
 }
@@ -731,8 +627,10 @@ const char* kGlassScene = "camera 0 1 -4  0 0 0  0 1 0  40  8 8\nmaterial glass 
 const char* kBumpScene = "camera 0 1 -4  0 0 0  0 1 0  40  8 8\nmaterial white diffuse 0.8 0.8 0.8\n"
                          "quad -1 0 -1  0 0 2  2 0 0  white bump 0.7 5\npointlight 0 3 0  1 1 1\n";
 
-Outcome refractionWeights() {
-    Scene s = parseScene(kGlassScene, "glass");
+Outcome refractionWeightsAt(float ior) {
+    std::string text = kGlassScene;
+    text.replace(text.find("glass 1.5"), 9, "glass " + num(ior, 6));
+    Scene s = parseScene(text, "glass");
     SurfacePoint sp = makeSurfacePoint(s.shapes[0], 0, Vec3(0.1f, 0, 0.2f), false);
     std::vector<double> measured, zero, right, swapped, none, notSquared, inverted, both;
     std::vector<std::string> where;
@@ -740,7 +638,7 @@ Outcome refractionWeights() {
     for (Case c : {Case{0, true}, Case{30, true}, Case{60, true}, Case{10, false}, Case{25, false}, Case{35, false}}) {
         float a = c.degrees * kPi / 180;
         Vec3 wo = normalize(Vec3(std::sin(a), c.fromOutside ? std::cos(a) : -std::cos(a), 0.1f * std::sin(a)));
-        const double etaO = c.fromOutside ? 1 : 1.5, etaI = c.fromOutside ? 1.5 : 1, r = sqr(float(etaO / etaI));
+        const double etaO = c.fromOutside ? 1 : ior, etaI = c.fromOutside ? ior : 1, r = sqr(float(etaO / etaI));
         for (Transport mode : {Transport::Radiance, Transport::Importance}) {
             BsdfSample bs;
             bool ok = specularScatter(s, sp, wo, mode, true, bs);
@@ -763,8 +661,8 @@ Outcome refractionWeights() {
                  "page 14", both},
     };
     Fit f = fitModels(measured, zero, models,
-                      "refraction's weight through glass of index 1.5 (radiance, then importance, at 0, 30, 60 degrees from outside and 10, 25, 35 from inside)", 1e-4);
-    return {f.pass, f.text};
+                      "refraction's weight through glass of index " + num(ior) + " (radiance, then importance, at 0, 30, 60 degrees from outside and 10, 25, 35 from inside)", 1e-4);
+    return {f.pass, f.text, f.mistake};
 }
 
 Outcome adjointRatio() {
@@ -796,7 +694,7 @@ Outcome adjointRatio() {
         {"other half", "half of the adjoint factor: |wi.ng| / |wi.ns| alone; the other half, |wo.ns| / |wo.ng|, belongs too (page 13)", wiOnly},
     };
     Fit f = fitModels(measured, zero, models, "the BSDF for importance (light paths) with shading normals, at 60 pairs of directions", 1e-4);
-    return {f.pass, f.text};
+    return {f.pass, f.text, f.mistake};
 }
 
 double dataNumber(const std::string& name) {
@@ -821,7 +719,7 @@ Outcome energyGenerator() {
 }
 
 std::vector<Check> checksH3() {
-    return {{"refraction by transport mode", 4, refractionWeights},
+    return {{"refraction by transport mode", 4, [] { return refractionWeightsAt(1.5f); }},
             {"the adjoint BSDF", 4, adjointRatio},
             {"the energy generator seen from the light", 2, energyGenerator}};
 }
@@ -893,7 +791,7 @@ Outcome gatherVisible() {
         {"last only", "only the last VPL's light kept: add each VPL's connection to the sum", {lamp}},
     };
     Fit f = fitModels({measured}, {0}, models, "gatherVpls from a VPL on a wall and one on the lamp, at a floor point that sees both", 1e-4);
-    return {f.pass, f.text};
+    return {f.pass, f.text, f.mistake};
 }
 
 Outcome gatherHidden() {
@@ -917,12 +815,11 @@ Outcome gatherLength() {
         {"one short", "the length limit off by one: a path of exactly --maxdepth bounces is kept (b + c + 1 <= maxDepth)", {0}},
     };
     Fit f = fitModels({measured}, {0}, models, "gatherVpls at --maxdepth 3 from x one bounce from the camera, VPLs after 2 and 1 bounces", 1e-4);
-    return {f.pass, f.text};
+    return {f.pass, f.text, f.mistake};
 }
 
-Outcome gatherClamp() {
+Outcome gatherClampAt(float C) {
     Room r;
-    const float C = 0.1f;
     double Gwall = 0, Gnear = 0, wall = closedConnection(r.wall, r.x, &Gwall), near = closedConnection(r.near, r.x, &Gnear);
     RowOutput report;
     double measured = gather(r, {{r.wall, 1}, {r.near, 1}}, 32, 0, C, &report);
@@ -932,8 +829,8 @@ Outcome gatherClamp() {
         {"clamped always", "every connection scaled by C / G, also those whose G is below C: min(G, C) leaves them alone", {wall * C / Gwall + near * C / Gnear}},
         {"contribution clamped", "the contribution bounded by C instead of G: min(G, C) bounds the geometry term", {std::min(wall, double(C)) + std::min(near, double(C))}},
     };
-    Fit f = fitModels({measured}, {0}, models, "gatherVpls with --clamp 0.1 from a far VPL (G " + num(Gwall, 3) + ") and a near one (G " + num(Gnear, 3) + ")", 1e-4);
-    return {f.pass, f.text};
+    Fit f = fitModels({measured}, {0}, models, "gatherVpls with --clamp " + num(C) + " from a far VPL (G " + num(Gwall, 3) + ") and a near one (G " + num(Gnear, 3) + ")", 1e-4);
+    return {f.pass, f.text, f.mistake};
 }
 
 Outcome clampReport() {
@@ -973,7 +870,7 @@ std::vector<Check> checksH4() {
     return {{"gathering visible VPLs", 2, gatherVisible},
             {"a VPL hidden from x", 1, gatherHidden},
             {"the path-length limit", 1, gatherLength},
-            {"the clamp", 2, gatherClamp},
+            {"the clamp", 2, [] { return gatherClampAt(0.1f); }},
             {"the clamp's energy report", 1, clampReport},
             {"ir on cornell against the reference", 2, irCornell},
             {"ir --maxdepth 1 against direct light", 1, irDirect}};
@@ -1228,7 +1125,7 @@ std::vector<Check> checksH5() {
 namespace grade {
 
 // The chain on physics.h's known target, with the renderer's default steps and the student's acceptance.
-TargetRun runOnTarget(uint64_t seed) { return runOnKnownTarget(RenderOptions(), checkRng(seed, 0, 0)); }
+TargetRun runOnTarget(uint64_t seed, const RenderOptions& steps = RenderOptions()) { return runOnKnownTarget(steps, checkRng(seed, 0, 0)); }
 
 Outcome acceptance() {
     struct Pair { float current, proposal; };
@@ -1242,11 +1139,12 @@ Outcome acceptance() {
     }
     std::vector<Model> models = {
         {"right", "", right},
-        {"inverted", "the ratio upside down: a = min(1, f(proposal) / f(current)), so that the chain climbs toward the bright paths", inverted},
+        {"inverted", "the ratio upside down: min(1, f(current) / f(proposal)) sends the chain away from the bright paths; detailed balance "
+                     "needs the proposal's contribution over the current one's (page 16)", inverted},
         {"no min", "not bounded by 1: a probability; min(1, f(y)/f(x))", unclamped},
     };
     Fit f = fitModels(measured, zero, models, "symmetricAcceptance(f current, f proposal) at (2, 1), (1, 2), (1, 0), (0.5, 0.5), (4, 1)", 1e-5);
-    return {f.pass, f.text};
+    return {f.pass, f.text, f.mistake};
 }
 
 Outcome chainVisits() {
@@ -1317,52 +1215,46 @@ int writeData(const std::string& dir) {
     return numbers ? 0 : 1;
 }
 
-struct TaskSpec {
-    std::string id, title;
-    int points;
-};
+#ifdef BDPT_HIDDEN_CHECKS
+#include "hidden.h"  // the teacher's checks, in this namespace: never copied into a student's folder
+#endif
+
 std::vector<Check> checksFor(const std::string& id) {
-    if (id == "H1") return checksH1();
-    if (id == "H2") return checksH2();
-    if (id == "H3") return checksH3();
-    if (id == "H4") return checksH4();
-    if (id == "H5") return checksH5();
-    if (id == "H6") return checksH6();
-    return {};
+    std::vector<Check> checks = id == "H1" ? checksH1() : id == "H2" ? checksH2() : id == "H3" ? checksH3() : id == "H4" ? checksH4()
+                              : id == "H5" ? checksH5() : id == "H6" ? checksH6() : std::vector<Check>();
+#ifdef BDPT_HIDDEN_CHECKS  // the teacher's grade: hidden.h's checks too (make grade-class, make gradescope)
+    for (Check c : hiddenChecksFor(id)) c.hidden = true, checks.push_back(c);
+#endif
+    return checks;
 }
 // A task's CPU seconds: its checks take a few on a laptop; the limit only stops an endless loop
 // (--cpu-limit S sets another).
 double gCpuLimit = 60;
 
-int run(const std::vector<TaskSpec>& tasks) {
-    int total = 0, max = 0;
+int run(const std::vector<TaskSpec>& tasks, const std::string& jsonPath) {
+    const auto start = std::chrono::steady_clock::now();
+    int total = 0, max = 0, hidden = 0, hiddenMax = 0;
+    std::vector<TaskResult> results;
     for (const TaskSpec& t : tasks) {
-        std::vector<Check> checks = checksFor(t.id);
-        TaskResult r = runTask(checks, gCpuLimit);
+        TaskResult r = runTask(checksFor(t.id), gCpuLimit);
         if (r.max != t.points) r.notes.push_back("the grader's checks add up to " + std::to_string(r.max) + " points, the task list says " + std::to_string(t.points));
-        std::string head = t.id + " " + t.title + " ";
-        while (head.size() < 60) head += '.';
-        std::printf("%s %2d / %d\n", head.c_str(), r.points, r.max);
-        for (const std::string& n : r.notes) {  // wrapped at 110 columns, hanging under its dash
-            std::string line = "    -";
-            std::istringstream words(n);
-            for (std::string w; words >> w;) {
-                if (line.size() + 1 + w.size() > 110 && line.size() > 6) std::printf("%s\n", line.c_str()), line = "     ";
-                line += " " + w;
-            }
-            std::printf("%s\n", line.c_str());
-        }
-        std::fflush(stdout);
-        total += r.points, max += r.max;
+        printTask(t, r);
+        total += r.points, max += r.max, hidden += r.hiddenPoints, hiddenMax += r.hiddenMax;
+        results.push_back(r);
     }
-    std::printf("total %d / %d\n", total, max);
+    if (hiddenMax > 0) std::printf("total %d / %d, hidden %d / %d\n", total, max, hidden, hiddenMax);
+    else std::printf("total %d / %d\n", total, max);
+    if (!jsonPath.empty() && !writeJson(jsonPath, tasks, results, secondsSince(start))) {
+        std::fprintf(stderr, "grade: cannot write %s\n", jsonPath.c_str());
+        return 1;
+    }
     return 0;
 }
 
 }  // namespace grade
 
 int main(int argc, char** argv) {
-    std::string tasksFile = "grader/tasks.txt", only;
+    std::string tasksFile = "grader/tasks.txt", only, json;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i], v = i + 1 < argc ? argv[i + 1] : "";
         if (a == "--write-data" && !v.empty()) {
@@ -1376,10 +1268,11 @@ int main(int argc, char** argv) {
         if (a == "--data" && !v.empty()) grade::dataDir = v, ++i;
         else if (a == "--tasks" && !v.empty()) tasksFile = v, ++i;
         else if (a == "--task" && !v.empty()) only = v, ++i;
+        else if (a == "--json" && !v.empty()) json = v, ++i;
         else if (a == "--cpu-limit" && std::atof(v.c_str()) > 0) grade::gCpuLimit = std::atof(v.c_str()), ++i;
         else if (a == "--seed" && !v.empty()) grade::gSeed = uint64_t(std::atoll(v.c_str())), ++i;
         else {
-            std::fprintf(stderr, "usage: grade [--task ID] [--data DIR] [--tasks FILE] [--cpu-limit SECONDS] [--seed N] | grade --write-data DIR\n");
+            std::fprintf(stderr, "usage: grade [--task ID] [--data DIR] [--tasks FILE] [--cpu-limit SECONDS] [--seed N] [--json FILE] | grade --write-data DIR\n");
             return 2;
         }
     }
@@ -1397,6 +1290,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "grade: no task %s in %s\n", only.empty() ? "at all" : only.c_str(), tasksFile.c_str());
         return 2;
     }
-    std::printf("bdpt homework: grading bdpt.cpp by the physics, task by task (each in a process of its own)\n");
-    return grade::run(tasks);
+    std::printf("bdpt homework: grading bdpt.cpp by the physics, task by task (each in a process of its own, at most %g CPU seconds)\n",
+                grade::gCpuLimit);
+    return grade::run(tasks, json);
 }

@@ -20,7 +20,7 @@ inline std::vector<Mistake> readMistakes(const std::string& path = "tests/homewo
     std::string* open = nullptr;
     for (std::string line; std::getline(file, line);) {
         if (line.empty() || line[0] == '#') { open = nullptr; continue; }
-        if (line.rfind("mistake ", 0) == 0 || line.rfind("robust ", 0) == 0) {
+        if (line.rfind("mistake ", 0) == 0 || line.rfind("robust ", 0) == 0 || line.rfind("hidden ", 0) == 0) {
             Mistake m;
             m.kind = line.substr(0, line.find(' '));
             std::vector<std::string> parts;

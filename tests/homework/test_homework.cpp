@@ -52,7 +52,8 @@ int shell(const std::string& command) {
 
 // -- a grading's report: each task's points and its notes
 struct Report {
-    std::map<std::string, std::pair<int, int>> points;
+    std::map<std::string, std::pair<int, int>> points, hidden;  // hidden: the teacher's grade alone
+    int hiddenTotal = -1, hiddenMax = -1;
     std::map<std::string, std::string> notes;
     int total = -1, max = -1;
     std::string notesOf(const std::string& task) const { return notes.count(task) ? notes.at(task) : ""; }
@@ -61,13 +62,18 @@ struct Report {
 Report readReport(const std::string& text) {
     Report r;
     r.text = text;
-    static const std::regex task("^(H[0-9]) .* ([0-9]+) / ([0-9]+)$"), total("^total ([0-9]+) / ([0-9]+)$");
+    static const std::regex task("^(H[0-9]) .*? ([0-9]+) / ([0-9]+)(, hidden ([0-9]+) / ([0-9]+))?$"), total("^total ([0-9]+) / ([0-9]+)(, hidden ([0-9]+) / ([0-9]+))?$");
     std::istringstream in(text);
     std::string current;
     for (std::string line; std::getline(in, line);) {
         std::smatch m;
-        if (std::regex_match(line, m, task)) current = m[1], r.points[current] = {std::stoi(m[2]), std::stoi(m[3])};
-        else if (std::regex_match(line, m, total)) r.total = std::stoi(m[1]), r.max = std::stoi(m[2]);
+        if (std::regex_match(line, m, task)) {
+            current = m[1], r.points[current] = {std::stoi(m[2]), std::stoi(m[3])};
+            if (m[4].matched) r.hidden[current] = {std::stoi(m[5]), std::stoi(m[6])};
+        } else if (std::regex_match(line, m, total)) {
+            r.total = std::stoi(m[1]), r.max = std::stoi(m[2]);
+            if (m[3].matched) r.hiddenTotal = std::stoi(m[4]), r.hiddenMax = std::stoi(m[5]);
+        }
         else if (line.rfind("    ", 0) == 0 && !current.empty()) r.notes[current] += line + "\n";
     }
     return r;
@@ -75,7 +81,7 @@ Report readReport(const std::string& text) {
 
 // -- the programs: the grader compiled with each variant, all at once on the machine's cores
 struct Job {
-    std::string dir, source, gradeArgs;
+    std::string dir, source, gradeArgs, compileArgs = "";  // -DBDPT_HIDDEN_CHECKS: the teacher's grader
 };
 void runJobs(const std::vector<Job>& jobs) {
     const size_t cores = std::max(1u, std::thread::hardware_concurrency());
@@ -88,7 +94,7 @@ void runJobs(const std::vector<Job>& jobs) {
         while (running.size() >= cores) reap();
         pid_t pid = fork();
         if (pid == 0) {
-            std::string command = "g++ -O1 -std=c++17 -Wall -Wextra -pthread -I" + j.dir + " -Iclassroom -o " + j.dir + "/grade classroom/homework/grade.cpp -lstb -pthread > " +
+            std::string command = "g++ -O1 -std=c++17 -Wall -Wextra -pthread " + j.compileArgs + " -I" + j.dir + " -Iclassroom -o " + j.dir + "/grade classroom/homework/grade.cpp -lstb -pthread > " +
                                   j.dir + "/compile.log 2>&1 && " + j.dir + "/grade --data build/homework-data --tasks " + kDir + "/tasks.txt " +
                                   j.gradeArgs + " > " + j.dir + "/grade.log 2>&1";
             execl("/bin/sh", "sh", "-c", command.c_str(), (char*)nullptr);
@@ -102,7 +108,7 @@ void runJobs(const std::vector<Job>& jobs) {
 struct Results {
     std::vector<Mistake> mistakes;
     std::vector<Report> reports;  // one per mistake
-    Report solution, stubs, answered;
+    Report solution, stubs, answered, solutionTeacher;
     std::string solutionSource;
 };
 const Results& results() {
@@ -128,14 +134,19 @@ const Results& results() {
             shell("mkdir -p " + dir);
             writeFile(dir + "/bdpt.cpp", source);
             // an endless loop meets a short CPU limit here (it is the same limit, a tenth of it)
-            jobs.push_back({dir, source, out.mistakes[i].kind == "robust" ? "--cpu-limit 6" : ""});
+            jobs.push_back({dir, source, out.mistakes[i].kind == "robust" ? "--cpu-limit 6" : "",
+                            out.mistakes[i].kind == "hidden" ? "-DBDPT_HIDDEN_CHECKS" : ""});
         }
         const std::string solution = kDir + "/solution";
         shell("mkdir -p " + solution + " && cp bdpt.cpp " + solution + "/");
         jobs.push_back({solution, "", ""});
+        const std::string teacher = kDir + "/solution-teacher";  // the teacher's grade: the public checks and hidden.h's
+        shell("mkdir -p " + teacher + " && cp bdpt.cpp " + teacher + "/");
+        jobs.push_back({teacher, "", "", "-DBDPT_HIDDEN_CHECKS"});
         runJobs(jobs);
         for (size_t i = 0; i < out.mistakes.size(); ++i) out.reports.push_back(readReport(readFile(kDir + "/m" + std::to_string(i) + "/grade.log")));
         out.solution = readReport(readFile(solution + "/grade.log"));
+        out.solutionTeacher = readReport(readFile(teacher + "/grade.log"));
         // the folder a student gets, every task cut, graded by its own Makefile
         shell("make -s homework HOMEWORK_DIR=" + kDir + "/folder TASKS='H1 H2 H3 H4 H5 H6' > " + kDir + "/make-homework.log 2>&1");
         shell("make -s -C " + kDir + "/folder grade > " + kDir + "/stubs.log 2>&1");
@@ -183,6 +194,41 @@ TEST_CASE("a right answer written into the file handed out, graded in the same f
     CHECK(answered.find("float etaScale = 1;") == std::string::npos);  // its stubs replaced
     REQUIRE(r.max == 60);
     CHECK(r.total == 60);
+}
+
+TEST_CASE("the teacher's grade: the solution gets every public and every hidden point, and the hidden checks are the teacher's alone") {
+    const Report& r = results().solutionTeacher;
+    MESSAGE(r.text);
+    CHECK(r.max == 60);
+    CHECK(r.total == 60);
+    CHECK(r.hiddenMax >= 6);  // at least one hidden check a task
+    CHECK(r.hiddenTotal == r.hiddenMax);
+    for (const char* task : {"H1", "H2", "H3", "H4", "H5", "H6"}) {
+        CAPTURE(task);
+        REQUIRE(r.hidden.count(task));
+        CHECK(r.hidden.at(task).second > 0);
+    }
+    CHECK(results().solution.hiddenMax == -1);  // the student's grader has none
+}
+
+TEST_CASE("each mistake only a hidden check catches loses hidden points in its task, and no other's, and is named") {
+    const Results& all = results();
+    int hidden = 0;
+    for (size_t i = 0; i < all.mistakes.size(); ++i) {
+        const Mistake& m = all.mistakes[i];
+        if (m.kind != "hidden") continue;
+        const Report& r = all.reports[i];
+        CAPTURE(m.what);
+        CAPTURE(r.text);
+        REQUIRE(r.hidden.count(m.task));
+        CHECK(r.hidden.at(m.task).first < r.hidden.at(m.task).second);
+        for (const auto& [task, p] : r.points)
+            if (task != m.task) CHECK(p.first == p.second);
+        CHECK(squeeze(r.notesOf(m.task)).find(m.words) != std::string::npos);
+        CHECK(squeeze(r.notesOf(m.task)).find("[hidden]") != std::string::npos);
+        ++hidden;
+    }
+    CHECK(hidden >= 2);
 }
 
 TEST_CASE("the file handed out compiles, and its stubs get no point in any task") {
@@ -254,7 +300,7 @@ TEST_CASE("the student's folder holds no line of a cut body, and the notes none 
     std::vector<std::string> cut = cutLines(results().solutionSource, handedOut);
     MESSAGE(cut.size() << " code lines cut from bdpt.cpp");
     CHECK(cut.size() > 60);
-    std::vector<std::string> files = {folder + "/README.md", folder + "/Makefile", folder + "/grader/grade.cpp", folder + "/grader/physics.h",
+    std::vector<std::string> files = {folder + "/README.md", folder + "/Makefile", folder + "/grader/grade.cpp", folder + "/grader/harness.h", folder + "/grader/physics.h",
                                       folder + "/grader/tasks.txt", folder + "/grader/handed-out.cpp"};
     DIR* notes = opendir("lecture_notes");
     for (dirent* e; notes && (e = readdir(notes));)
@@ -272,6 +318,19 @@ TEST_CASE("the student's folder holds no line of a cut body, and the notes none 
             }
     }
     CHECK(found == 0);
+    // the folder's notes: every page, none with the answers for the instructor
+    int pages = 0, answers = 0;
+    DIR* copied = opendir((folder + "/lecture_notes").c_str());
+    for (dirent* e; copied && (e = readdir(copied));) {
+        const std::string name = e->d_name;
+        if (name.size() < 4 || name.substr(name.size() - 3) != ".md") continue;
+        ++pages;
+        answers += readFile(folder + "/lecture_notes/" + name).find("(for the instructor)") != std::string::npos;
+    }
+    if (copied) closedir(copied);
+    CHECK(pages >= 25);
+    CHECK(answers == 0);
+    CHECK(readFile("lecture_notes/07-probabilities.md").find("### Answers (for the instructor)") != std::string::npos);  // the teacher's copy
     // and no binary of the solution: the folder's only programs are what its own Makefile builds
     CHECK(shell("test -z \"$(find " + folder + " -type f -perm -u+x ! -path '*/build/*' ! -name bdpt)\"") == 0);
 }
@@ -307,4 +366,141 @@ TEST_CASE("make grade HOMEWORK=FILE grades a file anywhere, with the tasks of th
     CHECK(r.points.size() == 2);
     CHECK(r.total == 0);
     CHECK(r.max == 20);
+}
+
+// -- a course: the class graded in one command, and the Gradescope package
+// A student's file: the solution with one mistake of mistakes.txt applied (by what it says).
+std::string withMistake(const std::string& what) {
+    std::string source = readFile("bdpt.cpp");
+    for (const Mistake& m : readMistakes())
+        if (m.what == what)
+            for (const auto& [from, to] : m.edits) source.replace(source.find(from), from.size(), to);
+    return source;
+}
+const Report& reportOf(const std::string& what) {
+    const Results& all = results();
+    for (size_t i = 0; i < all.mistakes.size(); ++i)
+        if (all.mistakes[i].what == what) return all.reports[i];
+    throw std::runtime_error("no mistake " + what);
+}
+// The teacher's tools compile at -O1 here, as the mistakes' graders do (their words are under test).
+const std::string kTeacherFlags = "GRADE_CXXFLAGS='-O1 -std=c++17 -pthread' ";
+
+TEST_CASE("make grade-class: seven students into a gradebook, the exact CSV, and a report that counts their mistakes") {
+    results();
+    const std::string subs = kDir + "/class";
+    const std::string firstHit = "emission counted at the first hit only", etaNotSquared = "eta where the rule has eta squared",
+                      seenTwice = "the light seen directly weighted 1 for both strategies";
+    shell("rm -rf " + subs);
+    for (const char* student : {"alice", "bob", "carol", "dave", "erin", "frank", "gina", "hal"}) shell("mkdir -p " + subs + "/" + student);
+    writeFile(subs + "/alice/bdpt.cpp", readFile("bdpt.cpp"));
+    writeFile(subs + "/bob/bdpt.cpp", readFile(kDir + "/folder/grader/handed-out.cpp"));  // the stubs
+    writeFile(subs + "/carol/bdpt.cpp", withMistake(firstHit));
+    writeFile(subs + "/dave/homework.cpp", withMistake(firstHit));  // any file name
+    writeFile(subs + "/erin/bdpt.cpp", withMistake(seenTwice));
+    writeFile(subs + "/frank/bdpt.cpp", withMistake(etaNotSquared));
+    writeFile(subs + "/gina/bdpt.cpp", readFile("bdpt.cpp") + "\nint broken( {\n");
+    // hal handed in nothing
+    REQUIRE(shell(kTeacherFlags + "make -s grade-class SUBMISSIONS=" + subs + " TASKS='H1 H2 H3 H4 H5' GRADE_JOBS=2 > " + kDir + "/class.log 2>&1") == 0);
+    MESSAGE(readFile(kDir + "/class.log"));
+    // The expected rows: public points from the public grader's own runs of the same mistakes,
+    // hidden points from what each hidden check tries (2 a task).
+    auto row = [](const std::string& name, const std::map<std::string, std::pair<int, int>>& points, const std::map<std::string, int>& hidden,
+                  const std::string& note) {
+        std::string r = name;
+        int pub = 0, hid = 0;
+        for (const char* t : {"H1", "H2", "H3", "H4", "H5"}) {
+            const int p = points.count(t) ? points.at(t).first : 0, h = hidden.count(t) ? hidden.at(t) : 0;
+            r += "," + std::to_string(p) + "," + std::to_string(h), pub += p, hid += h;
+        }
+        return r + "," + std::to_string(pub) + "," + std::to_string(hid) + "," + std::to_string(pub + hid) + "," + note;
+    };
+    const std::map<std::string, int> allHidden = {{"H1", 2}, {"H2", 2}, {"H3", 2}, {"H4", 2}, {"H5", 2}}, none;
+    std::map<std::string, int> withoutH3 = allHidden, withoutH5 = allHidden;
+    withoutH3["H3"] = 0, withoutH5["H5"] = 0;  // water's eta^2 tells eta from eta^2; the light seen directly is H5's hidden check
+    const std::string csv = readFile("build/class/grades.csv");
+    std::istringstream lines(csv);
+    std::map<std::string, std::string> rows;
+    for (std::string l; std::getline(lines, l);) rows[l.substr(0, l.find(','))] = l;
+    CHECK(rows["student"] == "student,H1 public,H1 hidden,H2 public,H2 hidden,H3 public,H3 hidden,H4 public,H4 hidden,H5 public,H5 hidden,public,hidden,total,note");
+    CHECK(rows["alice"] == row("alice", results().solution.points, allHidden, ""));
+    CHECK(rows["bob"] == row("bob", {}, none, ""));
+    CHECK(rows["carol"] == row("carol", reportOf(firstHit).points, allHidden, ""));
+    CHECK(rows["dave"] == row("dave", reportOf(firstHit).points, allHidden, ""));
+    CHECK(rows["erin"] == row("erin", results().solution.points, withoutH5, ""));
+    CHECK(rows["frank"] == row("frank", reportOf(etaNotSquared).points, withoutH3, ""));
+    CHECK(rows["gina"].rfind(row("gina", {}, none, "does not compile: "), 0) == 0);
+    CHECK(rows["hal"] == row("hal", {}, none, "no bdpt.cpp in the folder"));
+    CHECK(rows.size() == 9);
+    // The report: the mistake two students made, counted twice, in the notes' words
+    const std::string report = squeeze(readFile("build/class/report.md"));
+    MESSAGE(readFile("build/class/report.md"));
+    CHECK(report.find("| 2 | pt in the furnace, depth by depth | emission is counted only where the camera ray first hits |") != std::string::npos);
+    CHECK(report.find("| 1 | the light seen directly, with --strategies (hidden) | the light seen directly weighted twice |") != std::string::npos);
+    CHECK(report.find("| 1 | refraction by transport mode | eta where the rule has eta^2 |") != std::string::npos);
+    CHECK(report.find("8 students, 6 graded") != std::string::npos);
+    CHECK(readFile("build/class/mistakes.svg").find("<svg") == 0);
+}
+
+TEST_CASE("make gradescope: the package's run_autograder, in a simulated Gradescope tree, writes results.json check by check") {
+    results();
+    REQUIRE(shell("make -s gradescope TASKS='H1 H2 H3 H4 H5' > " + kDir + "/gradescope.log 2>&1") == 0);
+    // Gradescope's layout under AUTOGRADER_ROOT: the zip in source/, the student's files in submission/.
+    auto grade = [](const std::string& name, const std::string& file, const std::string& text) {
+        const std::string root = kDir + "/gradescope-" + name;
+        shell("rm -rf " + root + " && mkdir -p " + root + "/source " + root + "/submission && cd " + root +
+              "/source && python3 -m zipfile -e ../../../../build/gradescope/autograder.zip .");
+        writeFile(root + "/submission/" + file, text);
+        REQUIRE(shell(kTeacherFlags + "AUTOGRADER_ROOT=" + root + " bash " + root + "/source/run_autograder > " + root + "/stdout 2>&1") == 0);
+        // results.json, read by Python's json: a line per test, then the whole
+        shell("python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); [print(\"%s\\t%s\\t%s\\t%s\\t%s\" % (t[\"name\"], t[\"score\"], t[\"max_score\"], "
+              "t[\"visibility\"], t[\"output\"])) for t in d[\"tests\"]]; print(\"score\\t%s\\t%s\\t%s\" % (d[\"score\"], d[\"execution_time\"], d[\"output\"]))' " +
+              root + "/results/results.json > " + root + "/tests.txt 2>&1");
+        return readFile(root + "/tests.txt");
+    };
+    struct Test { std::string name, visibility, output; int score = -1, max = -1; };
+    auto parse = [](const std::string& text, int& score, std::string& output) {
+        std::vector<Test> tests;
+        std::istringstream in(text);
+        for (std::string l; std::getline(in, l);) {
+            std::vector<std::string> f;
+            std::stringstream ss(l);
+            for (std::string x; std::getline(ss, x, '\t');) f.push_back(x);
+            if (f.size() >= 4 && f[0] == "score") score = std::stoi(f[1]), output = f[3];
+            else if (f.size() >= 5) tests.push_back({f[0], f[3], f[4], std::stoi(f[1]), std::stoi(f[2])});
+        }
+        return tests;
+    };
+    int score = -1;
+    std::string output;
+    std::vector<Test> solution = parse(grade("solution", "bdpt.cpp", readFile("bdpt.cpp")), score, output);
+    CHECK(score == 60);
+    int visible = 0, later = 0, full = 0, points = 0;
+    for (const Test& t : solution) {
+        visible += t.visibility == "visible", later += t.visibility == "after_due_date", full += t.score == t.max && t.output == "passed";
+        points += t.max;
+        CHECK(t.name.rfind("H", 0) == 0);
+    }
+    CHECK(later == 5);        // one hidden check a task
+    CHECK(visible >= 25);     // the public ones
+    CHECK(full == int(solution.size()));
+    CHECK(points == 60);
+    std::vector<Test> stubs = parse(grade("stubs", "bdpt.cpp", readFile(kDir + "/folder/grader/handed-out.cpp")), score, output);
+    CHECK(score == 0);
+    CHECK(stubs.size() == solution.size());
+    for (const Test& t : stubs) {
+        CAPTURE(t.name);
+        CHECK(t.score == 0);
+        CHECK(t.output.size() > 20);  // the grader's words: what it expected and measured
+    }
+    std::vector<Test> mistake = parse(grade("mistake", "mine.cpp", withMistake("the light seen directly weighted 1 for both strategies")), score, output);
+    CHECK(score == 58);
+    bool named = false;
+    for (const Test& t : mistake)
+        if (t.score < t.max) named = t.visibility == "after_due_date" && t.output.find("goes to s = 0 alone") != std::string::npos;
+    CHECK(named);
+    std::vector<Test> broken = parse(grade("broken", "bdpt.cpp", "int main( {"), score, output);
+    CHECK(score == 0);
+    CHECK(broken.empty());
+    CHECK(output.find("does not compile") != std::string::npos);
 }
