@@ -202,7 +202,13 @@ static std::string readme(const std::vector<const Task*>& tasks) {
       << "huge allocation costs that task's points, with a message, and not the others'.\n\n"
       << "Read beside each task the slides it names and the notes' pages (`lecture_notes/`, in this folder); the\n"
       << "rest of `bdpt.cpp` is the lecture's code, and the functions a TODO names are there to be called.\n"
-      << "`./bdpt --help` lists the options; `--method` chooses the slides' panel, `--res 64x64` makes a render quick.\n\n";
+      << "`./bdpt --help` lists the options; `--method` chooses the slides' panel, `--res 64x64` makes a render quick.\n"
+      << "`make grade` builds `./bdpt` too. Until a task is done, the methods that use its code render black or wrong\n"
+      << "(measured: each task's stubs alone against the solution, on cornell-glass and shading-normals):\n\n"
+      << "| `--method` | needs |\n|---|---|\n"
+      << "| `pt`, `nee`, `nee --mis` | H1 |\n| `lt` | H2 |\n| `ir` | H4 |\n| `bdpt`, `vcm` | H2, H5 (light tracing is bdpt's t = 1) |\n"
+      << "| `pssmlt`, `mmlt`, `mlt` | H2, H5, H6 |\n\n"
+      << "and every method needs H3 where there is glass or a shading normal.\n\n";
     int total = 0;
     for (const Task* t : tasks) total += std::stoi(t->points);
     r << "## The tasks (" << total << " points)\n\n";
@@ -220,7 +226,9 @@ static std::string readme(const std::vector<const Task*>& tasks) {
       << "It checks what a method renders and what a function returns on the scenes it knows: cornell, its\n"
       << "point-lit twin, the furnace, a glass interface, a bumped floor and a few of its own. Code that is right\n"
       << "there and wrong elsewhere (a scene it does not render, an option it does not pass) can pass; so can code\n"
-      << "that is slow. Full points say the physics holds on those scenes, not that the code is the lecture's.\n";
+      << "that is slow. Full points say the physics holds on those scenes, not that the code is the lecture's.\n"
+      << "Your teacher's grade may add checks this grader does not hold (other scenes, sizes and options): code\n"
+      << "right by the physics passes them too.\n";
     return r.str();
 }
 
