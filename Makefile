@@ -144,9 +144,9 @@ help:
 	@echo "seconds: a busy machine gives the same figures, later."
 	@echo "make test       every test file, one line each (about 4.5 CPU minutes, 3 minutes); make test-sanitize (about 12 minutes)"
 	@echo "make homework   a student's folder, build/homework/: bdpt.cpp with the tasks cut out, a README, make grade"
-	@echo "                (TASKS=\"H2 H5\": some; seconds, and 10 s the first time for the grader's data)"
+	@echo "                (TASKS=\"H2 H5\": some; ANSWERS=1: the notes keep their answers; seconds, 10 s the first time)"
 	@echo "make grade      grades build/homework/bdpt.cpp, or HOMEWORK=path/to/bdpt.cpp, by the physics (20 s)"
-	@echo "make test-homework  the grader against the solution, the stubs, 31 mistakes, a class and Gradescope (about 12 CPU minutes)"
+	@echo "make test-homework  the grader against the solution, the stubs, 39 mistakes, a class and Gradescope (about 12 CPU minutes)"
 	@echo "make grade-class SUBMISSIONS=dir  a folder per student graded with the hidden checks: build/class/grades.csv, report.md"
 	@echo "make gradescope the teacher's grader for Gradescope: build/gradescope/autograder.zip (seconds)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"
@@ -383,5 +383,5 @@ build/test_homework: tests/homework/test_homework.cpp tests/homework/mistakes.h
 	@mkdir -p build
 	$(CXX) -O1 -std=c++17 -Wall -Wextra -o $@ $<
 test-homework: build/homework-tools/cut build/homework-data/numbers.txt build/test_homework
-	@echo "make test-homework: the solution, the stubs and every mistake of tests/homework/mistakes.txt graded (about 40 compiles: 4 minutes of 2 cores)"
+	@echo "make test-homework: the solution, the stubs, every mistake of tests/homework/mistakes.txt, a class and Gradescope's package graded (about 60 compiles: 7 minutes of 2 cores)"
 	build/test_homework

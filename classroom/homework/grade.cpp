@@ -180,13 +180,14 @@ Fit fitModels(const std::vector<double>& measured, const std::vector<double>& se
         f.text = what + ": at the first, expected " + num(models[0].predicted[0]) + ", measured " + num(measured[0]) +
                  "; measured / expected from " + num(lo, 3) + " to " + num(hi, 3);
     }
-    if (black) return f.text += " (all 0)", f;
-    for (double m : measured)
-        if (!std::isfinite(m)) return f.text += " (NaN or infinite: a 0/0, or a division by a density of 0, somewhere; the renderer drops such samples)", f;
     size_t best = 0;
     for (size_t k = 1; k < models.size(); ++k)
         if (misfit(models[k]) < misfit(models[best])) best = k;
-    if (best > 0 && misfit(models[best]) <= 1) f.text += ": " + models[best].diagnosis, f.mistake = firstClause(models[best].diagnosis);
+    const bool named = best > 0 && misfit(models[best]) <= 1;  // a mistake that gives 0 (a limit off by one) is named too
+    if (black && !named) return f.text += " (all 0)", f;
+    for (double m : measured)
+        if (!std::isfinite(m)) return f.text += " (NaN or infinite: a 0/0, or a division by a density of 0, somewhere; the renderer drops such samples)", f;
+    if (named) f.text += ": " + models[best].diagnosis, f.mistake = firstClause(models[best].diagnosis);
     else if (models.size() > 1) f.text += ": no classic mistake fits these numbers (read the formula again on the notes' page)";
     return f;
 }

@@ -5,9 +5,12 @@
 // other task's, and the grader's words name it; a crash, a NaN, an endless loop and a 10-GB
 // allocation each cost their task, with the words given, and the grading run goes on; the
 // student's folder holds no line of any cut body, nor do the notes; make homework TASKS="H2 H5"
-// cuts those two alone and refuses to overwrite a folder a student has worked in.
-// Its programs compile side by side, as many as the machine has cores: about 35 compiles of the
-// lecture with the grader, at -O1 (the grader's words, not its speed, are under test here).
+// cuts those two alone and refuses to overwrite a folder a student has worked in. The course's
+// side: the teacher's grader (hidden.h) on the solution and on the mistakes only it catches,
+// make grade-class on eight folders against the exact gradebook, make gradescope's package in a
+// simulated Gradescope tree. Its programs compile side by side, as many as the machine has cores:
+// about 60 compiles of the lecture with the grader, at -O1 (the grader's words, not its speed,
+// are under test here).
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 #include <dirent.h>
