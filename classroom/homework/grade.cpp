@@ -438,8 +438,25 @@ Outcome directWithMis() {
     return {f.pass, f.text, f.mistake};
 }
 
+// nee (sampleNEE with the student's estimateDirect), plain and with --mis, against the reference.
+Outcome neeCornell() {
+    Scene s = scene("scenes/cornell.scene", 32, 32);
+    const std::vector<double> ref = regionMeans(dataImage("cornell-32"), 4);
+    for (bool mis : {false, true}) {
+        RenderOptions o = options(Method::NEE, 32, mis ? 14 : 13);
+        o.mis = mis;
+        Comparison c = compare(estimate(s, o, 4), ref, 4, 0.05);
+        if (c.pass) continue;
+        std::string text = std::string("nee") + (mis ? " --mis" : "") + " on cornell (32x32, 32 samples) against the reference: " + c.text;
+        if (c.ratio > 1.3 && !mis) text += ": the lamp's light counted twice, by next event and by the BSDF sample that hits it (page 9: count every path once)";
+        return {false, text};
+    }
+    return {true, ""};
+}
+
 std::vector<Check> checksH1() {
-    return {{"pt in the furnace, depth by depth", 2, ptFurnaceDepths},
+    return {{"pt in the furnace, depth by depth", 1, ptFurnaceDepths},
+            {"nee and nee --mis on cornell against the reference", 1, neeCornell},
             {"pt in the furnace with Russian roulette", 1, ptFurnaceRoulette},
             {"pt on cornell against the reference", 1, ptCornell},
             {"next event under a square lamp", 2, directUnderLamp},
