@@ -290,6 +290,23 @@ TEST_CASE("the homework's cuts still fit bdpt.cpp, and the file they make compil
             ++commentsAbove;
         }
     CHECK(commentsAbove == 0);
+    // The texts that answer a task (tasks' `secret` lines: code, and the banners' formulas) stand in
+    // the solution and nowhere in what a student gets: the file handed out, its README.
+    const std::string solution = readFile("bdpt.cpp"), readme = readFile("build/tmp/homework/README.md");
+    std::istringstream list(readFile("classroom/homework/tasks"));
+    int secrets = 0, inSolution = 0, handed = 0;
+    for (std::string line; std::getline(list, line);) {
+        if (line.rfind("secret ", 0) != 0) continue;
+        const std::string secret = line.substr(7);
+        ++secrets;
+        inSolution += solution.find(secret) != std::string::npos;
+        const bool given = handedOut.find(secret) != std::string::npos || readme.find(secret) != std::string::npos;
+        handed += given;
+        if (given) MESSAGE("handed out with its task: " << secret);
+    }
+    CHECK(secrets >= 12);
+    CHECK(inSolution == secrets);
+    CHECK(handed == 0);
 }
 
 // What the homework tells a student (the TODOs and the README, from classroom/homework/tasks)

@@ -24,10 +24,18 @@ struct Cut {
     std::vector<std::string> stub, todo;
     std::vector<std::string> answer;  // cut-lines: a right answer's lines (make test-homework writes them in)
 };
+// Lines of the lecture's comments that state a task's answer (a banner's formula): from the first
+// line holding `from` to the first after it holding `to`, replaced in the handed-out file by `note`.
+struct Hide {
+    int line = 0;
+    std::string from, to, note;
+};
 struct Task {
     int line = 0;
     std::string id, title, points, slides, notes, time, teaches, told;
     std::vector<Cut> cuts;
+    std::vector<Hide> hides;
+    std::vector<std::string> secrets;  // texts that answer the task: none may stand in the folder (make test checks)
     bool optional() const { return title.find("optional") != std::string::npos; }
 };
 
@@ -80,12 +88,17 @@ static std::vector<Task> readTasks(const std::string& file) {
             c.function = p[0];
             if (key == "cut-lines") c.from = p[1], c.to = p[2];
             t.cuts.push_back(c);
-        } else if (key == "slides") t.slides = rest;
+        } else if (key == "hide") {
+            std::vector<std::string> p = splitBars(rest);
+            if (p.size() != 3) fail(where, "hide FROM | TO | NOTE");
+            t.hides.push_back({n, p[0], p[1], p[2]});
+        } else if (key == "secret") t.secrets.push_back(rest);
+        else if (key == "slides") t.slides = rest;
         else if (key == "notes") t.notes = rest;
         else if (key == "time") t.time = rest;
         else if (key == "teaches") t.teaches = rest;
         else if (key == "told") t.told = rest;
-        else fail(where, "unknown key '" + key + "' (slides, notes, time, teaches, told, cut, cut-lines)");
+        else fail(where, "unknown key '" + key + "' (slides, notes, time, teaches, told, cut, cut-lines, hide, secret)");
     }
     for (const Task& t : tasks)
         for (const Cut& c : t.cuts) {
@@ -180,6 +193,16 @@ static std::string applyCut(const std::string& source, const Task& t, const Cut&
     std::string lines = todoBlock(t, c, indent);
     for (const std::string& s : answered ? c.answer : c.stub) lines += indent + s + "\n";
     return source.substr(0, from) + lines + source.substr(to);
+}
+
+static std::string applyHide(const std::string& source, const Hide& h, const std::string& tasksFile) {
+    const std::string where = tasksFile + ":" + std::to_string(h.line);
+    size_t from = source.find(h.from), to = from == std::string::npos ? from : source.find(h.to, from);
+    if (from == std::string::npos) fail(where, "'" + h.from + "' is not in the source");
+    if (to == std::string::npos) fail(where, "'" + h.to + "' does not follow '" + h.from + "'");
+    from = source.rfind('\n', from) + 1, to = source.find('\n', to) + 1;
+    const std::string indent = source.substr(from, source.find_first_not_of(' ', from) - from);
+    return source.substr(0, from) + commentLines(h.note, indent) + source.substr(to);
 }
 
 static std::string readme(const std::vector<const Task*>& tasks) {
@@ -291,8 +314,10 @@ int main(int argc, char** argv) {
         std::stringstream s;
         s << in.rdbuf();
         std::string source = s.str();
-        for (const Task* t : chosen)
+        for (const Task* t : chosen) {
             for (const Cut& c : t->cuts) source = applyCut(source, *t, c, tasksFile, answered);
+            for (const Hide& h : t->hides) source = applyHide(source, h, tasksFile);
+        }
         auto write = [](const std::string& path, const std::string& text) {
             std::ofstream f(path + ".tmp", std::ios::binary);
             f << text;
