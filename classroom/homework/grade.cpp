@@ -940,7 +940,18 @@ struct WeightCheck {
     bool anyWeight = false;  // a weight other than 0 seen
     double worstSum = 0, sumOfWorst = 0, worstDefinition = 0;
     std::map<int, double> worstAsHeuristic;  // the weights against each heuristic's definition
+    // the weights against two mistakes' (balance, power, uniform): (s,t) left out of its own sum,
+    // and every ratio upside down (p_{s,t} / p_i for p_i / p_{s,t})
+    double worstWithoutSelf = 0, worstInverted = 0;
 };
+// A heuristic's weight of strategy s from the densities, with the ratios r_i given by `ratio`
+// (p_i / p_s by the definition) and (s,t) itself counted or not: two mistakes' fingerprints.
+double weightFrom(Heuristic h, const std::map<int, double>& p, int s, bool self, bool inverted) {
+    double sum = 0;
+    for (auto [i, pi] : p)
+        if (i != s || self) sum += misPower(h, inverted ? p.at(s) / pi : pi / p.at(s));
+    return sum > 0 ? 1 / sum : 0;
+}
 WeightCheck checkWeights(const Scene& sc, Heuristic h, int samples) {
     WeightCheck wc;
     forEachLitPath(sc, samples, 77, [&](const std::vector<PathVertex>& light, int s, const std::vector<PathVertex>& camera, int t) {
@@ -961,6 +972,10 @@ WeightCheck checkWeights(const Scene& sc, Heuristic h, int samples) {
             wc.worstDefinition = std::max(wc.worstDefinition, std::fabs(w - definitionWeight(h, density, s2)));
             for (Heuristic other : {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform})
                 wc.worstAsHeuristic[int(other)] = std::max(wc.worstAsHeuristic[int(other)], std::fabs(w - definitionWeight(other, density, s2)));
+            if (h == Heuristic::Max) continue;
+            const double without = weightFrom(h, density, s2, false, false), upsideDown = weightFrom(h, density, s2, true, true);
+            wc.worstWithoutSelf = std::max(wc.worstWithoutSelf, std::fabs(w - without) / std::max(1.0, without));
+            wc.worstInverted = std::max(wc.worstInverted, std::fabs(w - upsideDown) / std::max(1.0, upsideDown));
         }
         ++wc.paths;
     });
@@ -982,12 +997,13 @@ std::vector<MisScene> misScenes() {
 
 Outcome weightsSum() {
     std::string text;
-    bool allZero = true;
+    bool allZero = true, withoutSelf = true;
     std::vector<std::string> failing;
     for (const MisScene& m : misScenes())
         for (Heuristic h : {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform}) {
             WeightCheck wc = checkWeights(m.scene, h, 150);
             allZero = allZero && std::fabs(wc.sumOfWorst) < 1e-9 && wc.worstSum > 0.99;
+            if (h != Heuristic::Max) withoutSelf = withoutSelf && wc.worstWithoutSelf <= 1e-3;
             if (wc.paths < 50) return {false, "the grader found only " + std::to_string(wc.paths) + " paths on " + m.name};
             if (wc.worstSum > 1e-3) failing.push_back(m.name + " (" + heuristicName(h) + "): a path whose weights sum to " + num(wc.sumOfWorst, 4));
         }
@@ -1002,6 +1018,9 @@ Outcome weightsSum() {
         if (onlySpecular) text += ": only where mirrors and glass are: a strategy that would connect at a mirror or glass vertex is counted; it "
                                   "cannot make the path (no connection passes a delta BSDF; page 10M)";
         else if (onlyPoint) text += ": only with the point light: a strategy that would hit a point light (s = 0) cannot make the path (deltaPosition)";
+        else if (withoutSelf) return {false, text + ": (s,t) itself is left out of its own sum: every weight is 1 / sum over the others; (s,t) counts with "
+                                                    "r = 1 (page 10)", "(s,t) itself is left out of its own sum"};
+
         else text += ": a strategy counted twice, or one missing (the walk adds each other strategy once, r_i relative to (s,t))";
     }
     return {false, text};
@@ -1010,11 +1029,12 @@ Outcome weightsSum() {
 Outcome weightsDefinition() {
     std::vector<std::string> failing;
     std::string likeOther;
-    bool anyWeight = false;
+    bool anyWeight = false, withoutSelf = true, inverted = true;
     for (const MisScene& m : misScenes())
         for (Heuristic h : {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform}) {
             WeightCheck wc = checkWeights(m.scene, h, 150);
             anyWeight = anyWeight || wc.anyWeight;
+            if (h != Heuristic::Max) withoutSelf = withoutSelf && wc.worstWithoutSelf <= 1e-3, inverted = inverted && wc.worstInverted <= 1e-3;
             if (wc.worstDefinition <= 1e-3) continue;
             failing.push_back(m.name + " (" + heuristicName(h) + "): a weight " + num(wc.worstDefinition, 3) + " from the definition");
             for (Heuristic other : {Heuristic::Balance, Heuristic::Power, Heuristic::Max, Heuristic::Uniform})
@@ -1025,6 +1045,12 @@ Outcome weightsDefinition() {
     std::string text = "each weight must be its heuristic's, from the densities of the strategies able to make the path (p_s^2 / sum p_i^2 for "
                        "power; page 10): " + failing[0] + (failing.size() > 1 ? " (and " + std::to_string(failing.size() - 1) + " more)" : "");
     if (!anyWeight) return {false, text + ": every weight is 0 (misWeight returns 0?)"};
+    if (likeOther.empty() && withoutSelf)
+        return {false, text + ": (s,t) itself is left out of its own sum: every weight is 1 / sum over the others; (s,t) counts with r = 1 (page 10)",
+                "(s,t) itself is left out of its own sum"};
+    if (likeOther.empty() && inverted)
+        return {false, text + ": each ratio upside down: the walk multiplies by pdfRev(x) / pdfFwd(x) of the vertex changing sides, r_i = p_i / p_{s,t} "
+                              "(page 7)", "each ratio upside down"};
     text += likeOther.empty() ? ": the ratios walked from (s,t) are wrong: pdfRev(x)/pdfFwd(x) of the vertex changing sides, the junction's four "
                                 "reverse densities (connectionJunction), not the stored ones (page 7)"
                               : likeOther + " (MisSum{heuristic})";
