@@ -1,5 +1,5 @@
 // classroom/homework/hidden.h: the teacher's checks, which no student's folder holds (make homework
-// copies grade.cpp and physics.h, never this file). grade.cpp includes it, inside its namespace,
+// copies grade.cpp, harness.h and physics.h, never this file). grade.cpp includes it, inside its namespace,
 // where it is compiled with -DBDPT_HIDDEN_CHECKS: make grade-class and make gradescope. Each task
 // gets at least one: other scenes, points, sizes and options than the public checks', and two
 // cases the public ones do not try (a lamp seen from behind; the light seen directly).
