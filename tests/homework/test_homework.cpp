@@ -333,6 +333,7 @@ TEST_CASE("the student's folder holds no line of a cut body, and the notes none 
     if (copied) closedir(copied);
     CHECK(pages >= 25);
     CHECK(answers == 0);
+    CHECK(shell("test ! -e " + folder + "/grader/hidden.h") == 0);  // the teacher's checks stay the teacher's
     CHECK(readFile("lecture_notes/07-probabilities.md").find("### Answers (for the instructor)") != std::string::npos);  // the teacher's copy
     // and no binary of the solution: the folder's only programs are what its own Makefile builds
     CHECK(shell("test -z \"$(find " + folder + " -type f -perm -u+x ! -path '*/build/*' ! -name bdpt)\"") == 0);
