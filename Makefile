@@ -285,9 +285,9 @@ build/estimators: classroom/workshop/estimators.cpp classroom/workshop/workshop.
 	@mkdir -p build
 	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
 # Pages 7 and 10M's paths worked with numbers (classroom/workshop/worked_path.cpp).
-build/worked-path: classroom/workshop/worked_path.cpp classroom/workshop/worked_path.h classroom/workshop/workshop.h $(RENDERER) build/flags
+build/worked-path: classroom/workshop/worked_path.cpp classroom/workshop/worked_path.h classroom/physics.h bdpt.cpp build/flags
 	@mkdir -p build
-	$(CXX) $(CXXFLAGS) -I. -o $@ $< $(LDLIBS)
+	$(CXX) $(CXXFLAGS) -I. -Iclassroom -Iclassroom/workshop -o $@ $< $(LDLIBS)
 
 # Uneven convergence (classroom/workshop/uneven.cpp): bdpt, mlt, pssmlt and mmlt per region on the door scene at
 # equal time, into build/ (make figures puts its figure into the notes).
@@ -335,6 +335,7 @@ homework: build/homework-tools/cut build/homework-data/numbers.txt
 	@cp classroom/homework/grade.cpp classroom/homework/harness.h classroom/physics.h $(HOMEWORK_DIR).tmp/grader/
 	@cp -r build/homework-data $(HOMEWORK_DIR).tmp/grader/data
 	@cp classroom/homework/Makefile.student $(HOMEWORK_DIR).tmp/Makefile
+	@mkdir -p $(HOMEWORK_DIR).tmp/tools && cp classroom/workshop/worked_path.cpp classroom/workshop/worked_path.h $(HOMEWORK_DIR).tmp/tools/
 	@cp $(HOMEWORK_DIR).tmp/bdpt.cpp $(HOMEWORK_DIR).tmp/grader/handed-out.cpp
 	@rm -rf $(HOMEWORK_DIR) && mv $(HOMEWORK_DIR).tmp $(HOMEWORK_DIR)
 HOMEWORK ?= build/homework/bdpt.cpp
@@ -382,6 +383,6 @@ gradescope: build/homework-tools/cut build/homework-data/numbers.txt
 build/test_homework: tests/homework/test_homework.cpp tests/homework/mistakes.h
 	@mkdir -p build
 	$(CXX) -O1 -std=c++17 -Wall -Wextra -o $@ $<
-test-homework: build/homework-tools/cut build/homework-data/numbers.txt build/test_homework
+test-homework: build/homework-tools/cut build/homework-data/numbers.txt build/test_homework build/worked-path
 	@echo "make test-homework: the solution, the stubs, every mistake of tests/homework/mistakes.txt, a class and Gradescope's package graded (about 60 compiles: 7 minutes of 2 cores)"
 	build/test_homework

@@ -226,6 +226,8 @@ static std::string readme(const std::vector<const Task*>& tasks) {
       << "Read beside each task the slides it names and the notes' pages (`lecture_notes/`, in this folder); the\n"
       << "rest of `bdpt.cpp` is the lecture's code, and the functions a TODO names are there to be called.\n"
       << "`./bdpt --help` lists the options; `--method` chooses the slides' panel, `--res 64x64` makes a render quick.\n"
+      << "`make build/worked-path` builds the tool of the notes' page 7 (`build/worked-path cornell`; `build/worked-path path\n"
+      << "SCENE WxH X,Y,Z ...` for a path of your own): every strategy's density and weights, to check `misWalk` by hand.\n"
       << "`make grade` builds `./bdpt` too. Until a task is done, the methods that use its code render black or wrong\n"
       << "(measured: each task's stubs alone against the solution, on cornell-glass and shading-normals):\n\n"
       << "| `--method` | needs |\n|---|---|\n"

@@ -3,8 +3,11 @@
 // build/worked-path path SCENE WxH X,Y,Z ...: any path of diffuse vertices from a lamp (x_0) to the
 // pinhole of SCENE rendered at WxH, given by its points x_0 ... x_{k-1}: every strategy's density
 // and weights (the page's path view draws one sample's paths; make test-web compares them).
-#include "classroom/workshop/workshop.h"
-#include "classroom/workshop/worked_path.h"
+// It needs the lecture alone: make homework hands it out (tools/), built there by make build/worked-path.
+#define BDPT_NO_MAIN
+#include "bdpt.cpp"
+#include "physics.h"  // classroom/, or the student's grader/
+#include "worked_path.h"
 
 static int usage() {
     std::fprintf(stderr, "usage: build/worked-path [cornell|caustic]\n       build/worked-path path SCENE WxH X,Y,Z X,Y,Z ...\n");

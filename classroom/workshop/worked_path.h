@@ -1,5 +1,6 @@
 // One path worked with numbers, for the notes (pages 7 and 10M), as markdown tables; the file
-// that includes this has included bdpt.cpp. Every density is written out from its definition
+// that includes this has included bdpt.cpp and classroom/physics.h (the weights from the
+// densities, definitionWeight). Every density is written out from its definition
 // (notes, page 7), with the renderer's own camera, lamp and roulette: the area density with which
 // the light side and the camera side would sample each vertex, and from their products every
 // strategy's p_{k,s} and weights. build/worked-path prints them; test_notes checks that the pages
@@ -11,7 +12,6 @@
 //   path:    any path of diffuse vertices from a lamp to the pinhole, given by its points (the
 //            page's path view draws one sample's paths; make test-web checks its weights here)
 #pragma once
-#include "../physics.h"  // definitionWeight: the weights from the densities
 #include <cstdio>
 #include <string>
 

@@ -334,6 +334,12 @@ TEST_CASE("the student's folder holds no line of a cut body, and the notes none 
     CHECK(pages >= 25);
     CHECK(answers == 0);
     CHECK(shell("test ! -e " + folder + "/grader/hidden.h") == 0);  // the teacher's checks stay the teacher's
+    // the notes' worked path, built in the folder from the lecture alone: page 7's table, as here
+    REQUIRE(shell("make -s -C " + folder + " build/worked-path > " + kDir + "/worked-path-build.log 2>&1") == 0);
+    REQUIRE(shell("(cd " + folder + " && build/worked-path cornell > ../worked-path-folder.txt) && build/worked-path cornell > " + kDir +
+                  "/worked-path-repo.txt") == 0);
+    CHECK(readFile(kDir + "/worked-path-folder.txt") == readFile(kDir + "/worked-path-repo.txt"));
+    CHECK(readFile(kDir + "/worked-path-repo.txt").find("| s | t |") != std::string::npos);
     CHECK(readFile("lecture_notes/07-probabilities.md").find("### Answers (for the instructor)") != std::string::npos);  // the teacher's copy
     // and no binary of the solution: the folder's only programs are what its own Makefile builds
     CHECK(shell("test -z \"$(find " + folder + " -type f -perm -u+x ! -path '*/build/*' ! -name bdpt)\"") == 0);
