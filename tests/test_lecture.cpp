@@ -307,6 +307,22 @@ TEST_CASE("the homework's cuts still fit bdpt.cpp, and the file they make compil
     CHECK(secrets >= 12);
     CHECK(inSolution == secrets);
     CHECK(handed == 0);
+    // The README's path through a mirror: each strategy's "makes the path" is physics.h's able().
+    Scene scene = parseScene("camera 0 1 -4  0 1 0  0 1 0  40  8 8\nmaterial white diffuse 0.5 0.5 0.5\nmaterial mirror mirror 0.9 0.9 0.9\n"
+                             "quad -1 2 -1  2 0 0  0 0 2  white emit 1 1 1\nquad -3 0 -3  6 0 0  0 0 6  white\nquad 2 0 -1  0 2 0  0 0 2  mirror\n", "mirror path");
+    std::vector<PathVertex> x(5);
+    const int shapes[5] = {0, 1, 2, 1, -1};  // the lamp, diffuse, the mirror, diffuse, the pinhole
+    for (int i = 0; i < 5; ++i) x[size_t(i)].sp.shape = shapes[i], x[size_t(i)].type = PathVertex::Surface;
+    std::istringstream rows(readme.substr(readme.find("| s | t | joins | makes the path |")));
+    int checkedRows = 0;
+    for (std::string row; std::getline(rows, row) && row.rfind("|", 0) == 0;) {
+        if (!std::isdigit(static_cast<unsigned char>(row[2]))) continue;
+        const int s = row[2] - '0';
+        CAPTURE(row);
+        CHECK((row.find("| yes |") != std::string::npos) == able(scene, x, s));
+        ++checkedRows;
+    }
+    CHECK(checkedRows == 5);
 }
 
 // What the homework tells a student (the TODOs and the README, from classroom/homework/tasks)

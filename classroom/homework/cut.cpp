@@ -247,6 +247,15 @@ static std::string readme(const std::vector<const Task*>& tasks) {
           r << "- **`" << c.function << "()`" << (c.to.empty() ? "" : ", the lines marked in it") << ":** " << joined(c.todo) << "\n";
         r << "\n";
     }
+    if (std::any_of(tasks.begin(), tasks.end(), [](const Task* t) { return t->id == "H5"; }))
+        r << "## A path through a mirror, and the strategies it leaves (H5)\n\n"
+          << "Strategy (s, t) makes the path x_0 ... x_k by joining x_{s-1}, the last vertex of its light subpath, to x_s, the last\n"
+          << "of its camera subpath; it can only where neither is a delta vertex (a mirror or glass), and s = 0 only where x_0\n"
+          << "lies on a lamp with an area. For x_0 on a lamp, x_1 diffuse, x_2 a mirror, x_3 diffuse and x_4 the pinhole (k = 4):\n\n"
+          << "| s | t | joins | makes the path |\n|---|---|---|---|\n"
+          << "| 0 | 5 | the camera subpath hits the lamp at x_0 | yes |\n| 1 | 4 | x_0 and x_1 | yes |\n"
+          << "| 2 | 3 | x_1 and x_2, the mirror | no |\n| 3 | 2 | x_2, the mirror, and x_3 | no |\n| 4 | 1 | x_3 and the pinhole x_4 | yes |\n\n"
+          << "So the walk leaves out (s', t') where x_{s'-1} or x_{s'} is a delta vertex, and the weights of the three left sum to 1.\n\n";
     r << "## What the grader cannot see\n\n"
       << "It checks what a method renders and what a function returns on the scenes it knows: cornell, its\n"
       << "point-lit twin, the furnace, a glass interface, a bumped floor and a few of its own. Code that is right\n"
