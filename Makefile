@@ -146,7 +146,7 @@ help:
 	@echo "make homework   a student's folder, build/homework/: bdpt.cpp with the tasks cut out, a README, make grade"
 	@echo "                (TASKS=\"H2 H5\": some; ANSWERS=1: the notes keep their answers; seconds, 10 s the first time)"
 	@echo "make grade      grades build/homework/bdpt.cpp, or HOMEWORK=path/to/bdpt.cpp, by the physics (20 s)"
-	@echo "make test-homework  the grader against the solution, the stubs, 42 mistakes, a class and Gradescope (about 12 CPU minutes)"
+	@echo "make test-homework  the grader against the solution, the stubs, 43 mistakes, a class and Gradescope (about 12 CPU minutes)"
 	@echo "make grade-class SUBMISSIONS=dir  a folder per student graded with the hidden checks: build/class/grades.csv, report.md"
 	@echo "make gradescope the teacher's grader for Gradescope: build/gradescope/autograder.zip (seconds)"
 	@echo "make panels     the slides' six panels at 40 paths per pixel: build/panels/ (under a minute)"

@@ -841,8 +841,12 @@ Outcome gatherClampAt(float C) {
     double Gwall = 0, Gnear = 0, wall = closedConnection(r.wall, r.x, &Gwall), near = closedConnection(r.near, r.x, &Gnear);
     RowOutput report;
     double measured = gather(r, {{r.wall, 1}, {r.near, 1}}, 32, 0, C, &report);
+    auto distance2 = [&](const PathVertex& y) { Vec3 d = r.x.sp.p - y.sp.p; return double(dot(d, d)); };
+    auto clampedBy = [&](double c, double G) { return G > C ? c * C / G : c; };
     std::vector<Model> models = {
         {"right", "", {wall + near * C / Gnear}},
+        {"G without 1/d^2", "the clamp compares cos cos alone with C: the geometry term G(x,y) = |cos_x| |cos_y| / d^2 keeps its 1/d^2 "
+                            "(page 4; panel (e))", {clampedBy(wall, Gwall * distance2(r.wall)) + clampedBy(near, Gnear * distance2(r.near))}},
         {"no clamp", "--clamp changes nothing: replace G by min(G, C), i.e. scale a connection whose G exceeds C by C / G (panel (e))", {wall + near}},
         {"clamped always", "every connection scaled by C / G, also those whose G is below C: min(G, C) leaves them alone", {wall * C / Gwall + near * C / Gnear}},
         {"contribution clamped", "the contribution bounded by C instead of G: min(G, C) bounds the geometry term", {std::min(wall, double(C)) + std::min(near, double(C))}},
