@@ -167,14 +167,15 @@ const Results& results() {
 
 // The non-trivial code lines of a body cut from bdpt.cpp: what a student's folder must not hold.
 std::vector<std::string> cutLines(const std::string& solution, const std::string& handedOut) {
-    std::set<std::string> kept;
+    auto trimmed = [](const std::string& line) { return line.substr(std::min(line.size(), line.find_first_not_of(' '))); };
+    std::set<std::string> kept;  // a line that stands uncut elsewhere too (materialAt's) reveals nothing
     std::istringstream h(handedOut);
-    for (std::string line; std::getline(h, line);) kept.insert(line);
+    for (std::string line; std::getline(h, line);) kept.insert(trimmed(line));
     std::vector<std::string> lines;
     std::istringstream s(solution);
     for (std::string line; std::getline(s, line);) {
-        std::string t = line.substr(std::min(line.size(), line.find_first_not_of(' ')));
-        if (kept.count(line) || t.size() < 24 || t.rfind("//", 0) == 0) continue;
+        std::string t = trimmed(line);
+        if (kept.count(t) || t.size() < 24 || t.rfind("//", 0) == 0) continue;
         lines.push_back(t);
     }
     return lines;
