@@ -191,7 +191,7 @@ build/web/engine.js: build/web-engine/bdpt-web.js classroom/web/worker.js
 	node -e 'const fs = require("fs"), src = process.argv.slice(1).map((f) => fs.readFileSync(f, "utf8")).join("\n"); fs.writeFileSync("$@.tmp", "const BDPT_WORKER_SOURCE = " + JSON.stringify(src) + ";\n")' $^
 	mv $@.tmp $@
 # The scenes' texts for the page's scene menu and editor, and two tests' scenes (a notes page names one, a mistake needs the other).
-build/web/scenes.js: $(wildcard scenes/*.scene) tests/energy-generator-flat.scene tests/thin-gap.scene
+build/web/scenes.js: $(wildcard scenes/*.scene) tests/energy-generator-flat.scene tests/thin-gap.scene tests/glass-camera.scene
 	@mkdir -p build/web
 	node -e 'const fs = require("fs"), o = {}; for (const f of process.argv.slice(1)) o[f] = fs.readFileSync(f, "utf8"); fs.writeFileSync("$@.tmp", "const BDPT_SCENES = " + JSON.stringify(o, null, 1) + ";\n")' $^
 	mv $@.tmp $@

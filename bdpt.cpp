@@ -1339,25 +1339,32 @@ inline Junction connectionJunction(const Scene& scene, Subpath light, int s, Sub
 }
 
 // The strategies able to make one path, each added as r_i = p_i / p_ref (p_ref the weighted
-// strategy's density, r = 1 itself), and its weight w = 1 / sum_i misPower(r_i); for the max
-// heuristic 1 / #ties if no r_i is larger. Equal densities computed in different orders can each
-// look larger by a rounding error: within 1e-4 they count as equal and share the path.
+// strategy's density, r = 1 itself), and its weight w = 1 / sum_i misPower(r_i). The max heuristic
+// gives the path to the largest density; equal densities computed in different orders can each look
+// larger by a rounding error, so every strategy within a factor 1 + 1e-4 of the largest shares it.
+// Measured from the largest, the sharing is the same whichever strategy weighs: the shares sum to 1.
 struct MisSum {
+    static constexpr double kTie = 1e-4;
     Heuristic heuristic;
     double sum = 0;
-    int larger = 0, equal = 0;
+    std::vector<double>* maxRatios = nullptr;  // the max heuristic's r_i until the largest is known: a
+                                               // buffer of the thread's (one MisSum at a time)
+    explicit MisSum(Heuristic h) : heuristic(h) {
+        thread_local std::vector<double> buffer;
+        if (h == Heuristic::Max) maxRatios = &buffer, buffer.clear();
+    }
     void add(double r) {
-        constexpr double kTie = 1e-4;
-        if (heuristic != Heuristic::Max) {
-            sum += misPower(heuristic, r);
-            return;
-        }
-        larger += r > 1 + kTie;
-        equal += std::fabs(r - 1) <= kTie;
+        if (heuristic == Heuristic::Max) maxRatios->push_back(r);
+        else sum += misPower(heuristic, r);
     }
     float weight() const {
-        if (heuristic == Heuristic::Max) return larger || equal == 0 ? 0 : 1.0f / equal;
-        return sum > 0 ? float(1 / sum) : 0;
+        if (heuristic != Heuristic::Max) return sum > 0 ? float(1 / sum) : 0;
+        double largest = 0;
+        for (double r : *maxRatios) largest = std::max(largest, r);
+        if (largest > 1 + kTie) return 0;  // itself (r = 1) is not among the largest
+        int sharing = 0;
+        for (double r : *maxRatios) sharing += r * (1 + kTie) >= largest;
+        return sharing ? 1.0f / sharing : 0;
     }
 };
 

@@ -11,18 +11,19 @@
 // ---- the heuristics (notes, page 10)
 
 // A heuristic's weight of strategy s by its definition, from the densities p of all the strategies
-// able to make the path: balance p_s / sum p, power p_s^2 / sum p^2, max 1 for the largest (ties
-// within 1e-4 share), uniform 1 / count.
+// able to make the path: balance p_s / sum p, power p_s^2 / sum p^2, max 1 for the largest (the
+// strategies within a factor 1 + 1e-4 of the largest share it), uniform 1 / count.
 inline double definitionWeight(Heuristic h, const std::map<int, double>& p, int s) {
-    double ps = p.at(s), sum = 0;
-    int larger = 0, equal = 0;
+    double ps = p.at(s), sum = 0, largest = 0;
     for (auto [i, pi] : p) {
         sum += h == Heuristic::Power ? pi * pi : h == Heuristic::Uniform ? 1 : pi;
-        if (i == s) continue;
-        larger += pi / ps > 1 + 1e-4;
-        equal += std::fabs(pi / ps - 1) <= 1e-4;
+        largest = std::max(largest, pi);
     }
-    if (h == Heuristic::Max) return larger ? 0 : 1.0 / (1 + equal);
+    if (h == Heuristic::Max) {
+        int sharing = 0;
+        for (auto [i, pi] : p) sharing += pi * (1 + 1e-4) >= largest;
+        return ps * (1 + 1e-4) >= largest ? 1.0 / sharing : 0;
+    }
     return (h == Heuristic::Power ? ps * ps : h == Heuristic::Uniform ? 1 : ps) / sum;
 }
 
@@ -163,9 +164,14 @@ inline double rebuiltWeight(const Scene& scene, const std::vector<PathVertex>& x
     return misWeight(scene, y, s, z, t, h, c, mergeEta);
 }
 
+// vcm's merge at x_i: the light subpath x_0..x_i and the camera subpath x_{n-1}..x_i both sampled
+// up to x_i, times eta_VCM (notes, page 15).
+inline double mergeDensity(const Scene& scene, const std::vector<PathVertex>& x, int i, Roulette roulette, double mergeEta) {
+    return subpathDensity(scene, x, 0, i, roulette) * subpathDensity(scene, x, int(x.size()) - 1, i, roulette) * mergeEta;
+}
+
 // The densities of every strategy able to make x, by s; with vcm's mergeEta > 0 also the merge at
-// every non-specular x_i (0 < i < n-1), keyed kMergeKey + i: the light subpath x_0..x_i and the
-// camera subpath x_{n-1}..x_i both sampled up to x_i, times eta_VCM (notes, page 15).
+// every non-specular x_i (0 < i < n-1), keyed kMergeKey + i.
 constexpr int kMergeKey = 1000;
 inline std::map<int, double> strategyDensities(const Scene& scene, const std::vector<PathVertex>& x, Roulette roulette, double mergeEta = 0) {
     std::map<int, double> density;
@@ -174,7 +180,7 @@ inline std::map<int, double> strategyDensities(const Scene& scene, const std::ve
         if (able(scene, x, s)) density[s] = pathDensity(scene, x, s, roulette);
     for (int i = 1; mergeEta > 0 && i + 1 < n; ++i)
         if (!specularAt(scene, x[size_t(i)]))
-            density[kMergeKey + i] = subpathDensity(scene, x, 0, i, roulette) * subpathDensity(scene, x, n - 1, i, roulette) * mergeEta;
+            density[kMergeKey + i] = mergeDensity(scene, x, i, roulette, mergeEta);
     return density;
 }
 

@@ -102,7 +102,7 @@ static WeightCheck checkWeights(const Scene& scene, Heuristic h, int samples, ui
             float wWalked = mergeWeight(scene, yMerge, i, zMerge, t2, h, mergeEta, pdf, pdfReverse);
             if (w < 0) w = wWalked, ++wc.mergesUnderflowed;  // a glossy lobe's f of 1e-30: nothing to splat
             wc.worstMergeWalk = std::max(wc.worstMergeWalk, double(std::fabs(w - wWalked)));
-            density[kMergeKey + i] = subpathDensity(scene, x, 0, i, roulette) * subpathDensity(scene, x, int(x.size()) - 1, i, roulette) * mergeEta;
+            density[kMergeKey + i] = mergeDensity(scene, x, i, roulette, mergeEta);
             weight[kMergeKey + i] = w;
             sum += w;
             wc.mergeShare += w;

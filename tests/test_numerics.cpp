@@ -1,6 +1,7 @@
 // Numerical honesty: error-bounded ray offsets, the same image at any scale and near a thin gap,
 // MIS sums that cannot make NaN, film coordinates inside the image. (Section 2 and bdpt's MIS.)
 #include "helpers.h"
+#include "classroom/physics.h"
 
 // scene scaled by k about the origin: lengths k, areas k^2; radiance is unchanged, so a point
 // light's intensity grows by k^2 to light the scaled room alike, and the image is the same.
@@ -146,6 +147,35 @@ TEST_CASE("MIS walk: a density of 0 is not a delta, and the sharp-lobe extremes 
     CHECK(std::isfinite(m.sum));
     CHECK(m.sum == doctest::Approx(3 * r * r));
     CHECK(std::isinf(float(r)));
+}
+
+// Three strategies whose densities are 1, 1 + 8e-5 and 1 + 1.6e-4: the first two and the last two
+// are within the max heuristic's rounding allowance (1e-4), the first and the last are not. Each
+// strategy weighs the path from its own densities, as a render does; the three weights must be a
+// partition of the path (sum 1), the largest density among the winners. A tie rule counted from each
+// strategy's own density (within 1e-4 of itself) gives 0, 1/3 and 1/2: a sixth of the path lost.
+TEST_CASE("MIS: the max heuristic's near-ties share the path whole, from every strategy's own walk and by definition") {
+    const std::vector<double> p = {1, 1.00008, 1.00016};
+    std::map<int, double> density;
+    for (size_t i = 0; i < p.size(); ++i) density[int(i)] = p[i];
+    double walked = 0, defined = 0;
+    std::vector<double> w(p.size());
+    for (size_t own = 0; own < p.size(); ++own) {
+        MisSum m{Heuristic::Max};
+        for (double pi : p) m.add(pi / p[own]);
+        w[own] = m.weight();
+        walked += w[own];
+        defined += definitionWeight(Heuristic::Max, density, int(own));
+        CHECK(w[own] == doctest::Approx(definitionWeight(Heuristic::Max, density, int(own))));
+    }
+    CHECK(walked == doctest::Approx(1).epsilon(1e-6));
+    CHECK(defined == doctest::Approx(1).epsilon(1e-12));
+    CHECK(w[2] > 0);   // the largest density is always among the winners
+    CHECK(w[0] == 0);  // 1.6e-4 below the largest: not a rounding error's distance
+    // Densities tied exactly (the furnace's: every strategy samples 1 / area) share equally.
+    MisSum tied{Heuristic::Max};
+    for (int i = 0; i < 4; ++i) tied.add(1 + 1e-7 * i);
+    CHECK(tied.weight() == doctest::Approx(0.25));
 }
 
 TEST_CASE("film coordinates stay inside the image, and the last column's camera densities are never 0") {

@@ -283,12 +283,15 @@ def tests(browser, url):
     time_command(browser)
     references(browser)
     numbers_shown(browser)
+    rays_as_notes(browser)
+    terminal_free(browser)
     lessons(browser)
     notes_view(browser)
     code_view(browser)
     path_view(browser)
     dead_worker(browser)
     layout_and_link(browser, url)
+    column_widths(browser)
     from_a_file(browser)
     browser.js("bdptPage.openNotes('07-probabilities')")
     browser.run("scenes/cornell.scene", ["pt", "nee --mis", "lt", "ir --clamp 1e-5", "bdpt --heuristic power", "vcm"], 0, seconds=2)
@@ -311,11 +314,12 @@ def first_panel(browser):
     check(m and "%.4g" % p["rmse"] == m.group(1) and "%.4g" % p["rmseWithoutLamp"] == m.group(2) and "%+.2f" % (100 * p["bias"]) == m.group(4),
           "the panel's RMSE and bias are ./bdpt --ref's", "page %.4g (%.4g), %+.2f%%; ./bdpt %s" % (p["rmse"], p["rmseWithoutLamp"], 100 * p["bias"], m and m.group(0)))
     # The same numbers as the student reads them, in the panel's text: each where its words say.
-    shown = re.search(r"(\d+) spp · [0-9.]+ s · mean ([0-9.e-]+) · RMSE ([0-9.e-]+) \(([0-9.e-]+) with the lamp's pixels\) · relMSE ([0-9.e-]+) · bias ([-+0-9.]+)%", p["stats"])
+    shown = re.search(r"(\d+) spp · [0-9.]+ s · mean ([0-9.e-]+) · RMSE ([0-9.e-]+) \(([0-9.e-]+) with the lamp's pixels\) · relMSE ([0-9.e-]+) · bias ([-+0-9.]+)% \(the mean's, the lamp's pixels left out\)", p["stats"])
     native_mean = float(re.search(r"mean ([0-9.e-]+),", printed).group(1))
     check(shown and shown.group(1) == "16" and abs(float(shown.group(2)) / native_mean - 1) < 1e-3 and m and shown.group(3) == m.group(2)
           and shown.group(4) == m.group(1) and shown.group(5) == m.group(3) and shown.group(6) == m.group(4),
-          "the panel's text says ./bdpt's numbers, each under its own name (RMSE without the lamp first, with it in brackets, relMSE, bias)",
+          "the panel's text says ./bdpt's numbers, each under its own name (RMSE without the lamp first, with it in brackets, relMSE, bias "
+          "saying it leaves the lamp's pixels out, as the mean does not: web-student-8's W20)",
           "page: %r; ./bdpt: %s" % (p["stats"], m and m.group(0)))
 
     # The canvas as drawn: ./bdpt's PNG, level for level (orientation, exposure and the sRGB curve).
@@ -569,6 +573,34 @@ def layout_and_link(browser, url):
           "a link to the page keeps its scene, methods, settings and notes page", repr(got))
 
 
+def column_widths(browser):
+    """web-student-8's W4, W17, W18: display formulas, the code view and the path view's tables stay
+    inside their column at a laptop's and a phone's size (nothing cut at the right, no scrollbar)."""
+    frames = "new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(() => r(%s))))"
+    wide = "(sel) => [...document.querySelectorAll(sel)].filter((e) => e.offsetParent && e.scrollWidth > e.clientWidth + 1).length"
+    browser.run("scenes/cornell.scene", ["bdpt"], 1)
+    for w, h in ((1366, 768), (390, 844)):
+        browser.size(w, h)
+        formulas, cut = 0, []
+        for page in ("04-measurement-equation", "07-probabilities", "08-path-formulation", "10-combining-estimators", "10m-mirrors-and-glass",
+                     "15-vertex-merging", "16-metropolis-sampling"):
+            browser.js("bdptPage.openNotes(%s)" % json.dumps(page))
+            n, over = browser.js(frames % ("[document.querySelectorAll('#notes-text .katex-display').length, (%s)('#notes-text .katex-display')]" % wide))
+            formulas += n
+            if over:
+                cut.append("%s: %d" % (page, over))
+        browser.js("bdptPage.openCode('connectionJunction')")
+        code = browser.js(frames % "(() => { const c = document.getElementById('code-text'); return [c.scrollWidth, c.clientWidth]; })()")
+        browser.js("bdptPage.openNotes('07-probabilities')")
+        browser.js("bdptPage.clickPixel(0, 20, 44)")
+        browser.wait_for("bdptPage.pathView() && bdptPage.pathView().x == 20")
+        table = browser.js(frames % "(() => { const t = document.getElementById('path-tables'); return [t.scrollWidth, t.clientWidth]; })()")
+        check(formulas >= 20 and not cut and code[0] <= code[1] + 1 and table[0] <= table[1] + 1,
+              "%dx%d: %d display formulas, the code view and the path view's tables each inside its column" % (w, h, formulas),
+              "formulas cut: %s; code %d in %d px; path tables %d in %d px" % (cut, code[0], code[1], table[0], table[1]))
+    browser.size(1920, 1080)
+
+
 def from_a_file(browser):
     # Opened from disk (file://): the workers start from a Blob, the wasm is inlined: it renders.
     browser.open("file://" + os.path.join(ROOT, "build", "web", "index.html"))
@@ -625,6 +657,10 @@ def references(browser):
     check(m and p["rmseWithoutLamp"] is not None and "%.4g" % p["rmseWithoutLamp"] == m.group(2) and "against tests/refs/cornell-direct.pfm" in p["stats"],
           "page 2's 24x24 button: its --ref honoured, the panel's RMSE ./bdpt's against tests/refs/cornell-direct.pfm",
           "./bdpt: %s; page: %r" % (m and m.group(0), p["stats"]))
+    # web-student-8's W1: that reference holds direct light only, and its entry cuts lengths: the
+    # panel must not say the reference has paths of every length.
+    check("--maxdepth" in command and all("paths of every length" not in q["stats"] for q in panels),
+          "page 2's --ref tests/refs/cornell-direct.pfm with --maxdepth: no '(the reference has paths of every length)'", "; ".join(q["stats"] for q in panels))
 
     # A reference is the scene's own, by its whole name: sds at 96x64 is measured against
     # web-refs/sds-96x64.pfm, never sds-point's (a right render then shows a bias of +40%);
@@ -681,6 +717,97 @@ def references(browser):
     note = "(the reference has paths of every length)"
     check(note not in panels[0]["stats"] and note in panels[1]["stats"], "'paths of every length' said for --maxdepth, not for --rr-start",
           "; ".join(p["stats"] for p in panels))
+
+
+def rays_as_notes(browser):
+    """web-student-8's W2: the rays per sample a panel shows are the notes' for the same command,
+    and a panel that records the pyramid says that its count includes the record's rays."""
+    def page_text(name):
+        return open(os.path.join(ROOT, "lecture_notes", name + ".md")).read().replace("\n", " ")
+
+    def rays_of(panels):
+        return {p["entry"]: re.search(r"([0-9.]+) rays per sample", p["stats"]).group(1) for p in panels}
+
+    # Page 12, exercise 3: its button (pt), then the other methods as the exercise asks.
+    quoted = re.search(r"pt ([0-9.]+) rays per sample \(all closest-hit\), nee ([0-9.]+), lt ([0-9.]+), bdpt ([0-9.]+)", page_text("12-comparison-with-path-tracing"))
+    press_button(browser, "12-comparison-with-path-tracing", "build/notes/rays.png")
+    browser.js("bdptPage.setEntries(['pt', 'nee', 'lt', 'bdpt'])")
+    browser.js("bdptPage.run()")
+    browser.wait_for("!bdptPage.running()")
+    rays = rays_of(browser.js("bdptPage.panels()"))
+    check(quoted and list(quoted.groups()) == [rays.get(m) for m in ("pt", "nee", "lt", "bdpt")],
+          "page 12's exercise 3: the rays per sample of pt, nee, lt and bdpt as its answer quotes them", "answer %s; panels %s" % (quoted and quoted.groups(), rays))
+    # Page 9, exercise 2: glass-box under the three roulette rules.
+    quoted = re.search(r"Rays per sample: throughput ([0-9.]+), albedo ([0-9.]+), off ([0-9.]+)", page_text("09-russian-roulette-and-sampling"))
+    press_button(browser, "09-russian-roulette-and-sampling", "--roulette throughput")
+    rules = ["bdpt --roulette %s" % r for r in ("throughput", "albedo", "off")]
+    browser.js("bdptPage.setEntries(%s)" % json.dumps(rules))
+    browser.js("bdptPage.run()")
+    browser.wait_for("!bdptPage.running()")
+    rays = rays_of(browser.js("bdptPage.panels()"))
+    check(quoted and list(quoted.groups()) == [rays.get(r) for r in rules],
+          "page 9's exercise 2: glass-box's rays per sample under the three roulette rules as its answer quotes them", "answer %s; panels %s" % (quoted and quoted.groups(), rays))
+    # W10: vcm's memory as page 15 quotes it for the page (its WebAssembly's own sizes).
+    quoted = re.search(r"In the web page the same command\s+reports ([0-9]+) bytes and ([0-9.]+) MB", page_text("15-vertex-merging"))
+    panels, _ = press_button(browser, "15-vertex-merging", "build/notes/vcm-memory.png")
+    shown = re.search(r"([0-9.]+) MB \(([0-9]+) bytes per light vertex\)", panels[0]["stats"])
+    check(quoted and shown and [quoted.group(1), quoted.group(2)] == [shown.group(2), shown.group(1)],
+          "page 15's vcm memory for the page: the bytes per light vertex and MB its panel shows", "notes %s; panel %r" % (quoted and quoted.groups(), panels[0]["stats"]))
+    # A run of one's own with the pyramid recorded: its count is ./bdpt --strategies's, and says so.
+    browser.js("bdptPage.setOptions({strategies: true})")
+    p = browser.run("scenes/cornell.scene", ["bdpt"], 2)[0]  # (the record stays on, the page's default, for the checks after)
+    check("with the pyramid's record" in p["stats"], "a bdpt panel that records the pyramid says its rays include the record's", repr(p["stats"]))
+
+
+def terminal_free(browser):
+    """web-student-8's W6, W13, W15: what the notes send to a terminal, the page does with its own
+    tools or says how: a scene the exercise has the student write, in the scene editor; --compare,
+    by the panels' own numbers; tests/glass-camera.scene, in the scene menu, with page 14's answer."""
+    written, compare = [], []
+    for page in browser.js("BDPT_NOTES.map((p) => p.file)"):
+        browser.js("bdptPage.openNotes(%s)" % json.dumps(page))
+        for b in browser.js("bdptPage.notesButtons()"):
+            if re.search(r"\sbuild/[\w-]+\.scene", b["command"]) and b["command"].startswith("./bdpt"):
+                written.append((page, b["reason"]))
+            if "--compare" in b["command"]:
+                compare.append((page, b["reason"]))
+    check(len(written) >= 4 and all("scene editor" in r for _, r in written),
+          "the exercises' own scenes (build/*.scene, %d commands): each button says to make it in the page's scene editor" % len(written),
+          "; ".join("%s: %r" % w for w in written if "scene editor" not in w[1]))
+    check(compare and all("not an option" not in r and "panels" in r for _, r in compare),
+          "--compare's commands (%d): the page says its panels' numbers stand for it" % len(compare), "; ".join("%s: %r" % c for c in compare))
+    menu = browser.js("[...document.getElementById('scene').options].map((o) => o.value)")
+    panels = browser.run("tests/glass-camera.scene", ["pt", "pt --symmetric-refraction"], 4, resolution="16x16")
+    means = [p["mean"] for p in panels]
+    check("tests/glass-camera.scene" in menu and abs(means[0] / 2.25 - 1) < 0.01 and abs(means[1] - 1) < 0.01,
+          "tests/glass-camera.scene in the scene menu: page 14's exercise 1 in the page, means 2.25 and 1 as its answer says",
+          "menu has it: %s; means %s" % ("tests/glass-camera.scene" in menu, means))
+    browser.js("bdptPage.selectScene('scenes/cornell.scene')")
+    # W9: page 10M's block of three commands: each button says which it runs, the ratio image's where it is.
+    browser.js("bdptPage.openNotes('10m-mirrors-and-glass')")
+    labels = [b["label"] for b in browser.js("bdptPage.notesButtons()") if b["runs"] and "glass-box" in b["command"]]
+    check(len(labels) >= 3 and len(set(labels)) == len(labels) and any("ratio image" in l for l in labels),
+          "page 10M's three commands: three different button labels, the ratio panel's saying the page shows both panels instead", repr(labels))
+    # W14: a command inside a sentence: its button after the sentence's paragraph, never inside the sentence.
+    inside = []
+    for page in ("02-light-and-path-tracing", "03-bidirectional-path-tracing", "09-russian-roulette-and-sampling", "11-contributions-of-paths",
+                 "12-comparison-with-path-tracing", "15-vertex-merging", "17-veach-mutations"):
+        browser.js("bdptPage.openNotes(%s)" % json.dumps(page))
+        inside += browser.js("[...document.querySelectorAll('#notes-text .commands')].filter((b) => !b.closest('pre') && b.previousElementSibling && "
+                             "b.previousElementSibling.tagName !== 'PRE' && b.parentElement.lastChild !== b).map((b) => %s + ': ' + b.textContent)" % json.dumps(page))
+    check(not inside, "the notes' commands inside sentences: each button after its paragraph", "; ".join(inside[:3]))
+    # W5: an option the method would ignore is refused, with ./bdpt's own message.
+    panels = browser.run("scenes/cornell.scene", ["nee --mis --heuristic balance", "nee --mis"], 1)
+    printed = subprocess.run(["./bdpt", "scenes/cornell.scene", "--method", "nee", "--mis", "--heuristic", "balance"], cwd=ROOT, capture_output=True, text=True).stderr
+    check("applies to" in panels[0]["error"] and panels[0]["error"].split(" (see")[0] in printed and panels[1]["passes"] == 1,
+          "nee --mis --heuristic balance: the panel refuses it with ./bdpt's message, the next one renders", "page %r; ./bdpt %r" % (panels[0]["error"], printed))
+    # W19: the contents page opens with what a student needs; how the figures are made and tested
+    # comes last, under the instructor's heading.
+    first = browser.js("(() => { const f = BDPT_NOTES[0]; const d = document.createElement('div'); d.innerHTML = f.html; "
+                       "const p = d.querySelector('p'); return [f.file, p ? p.textContent : '', d.textContent]; })()")
+    check(first[0].endswith("README.md") and "make figures" not in first[1] and "test" not in first[1]
+          and first[2].index("For the instructor") > first[2].index("slide title"),
+          "the contents page's first paragraph speaks to the student (no make figures, no tests); the instructor's part comes last", repr(first[1][:200]))
 
 
 def numbers_shown(browser):
@@ -811,12 +938,14 @@ def notes_view(browser):
     browser.size(1920, 1080)
     # 17: page 1's equal-time claim rests on the rays per sample the panels show.
     text = open(os.path.join(ROOT, "lecture_notes", "01-path-sampling-techniques.md")).read().replace("\n", " ")
-    quoted = re.search(r"pt's sample costs ([0-9.]+) rays and bdpt's ([0-9.]+) \(([0-9.]+) in the page", text)
+    # web-student-8's W2: a notes button records the pyramid only where its command has --strategies,
+    # so the bdpt panel's rays are the command's, not one more for the record's (1,1) connections.
+    quoted = re.search(r"pt's sample costs ([0-9.]+) rays and bdpt's ([0-9.]+)", text)
     panels, command = press_button(browser, "01-path-sampling-techniques", "--spp 40")
     rays = {p["entry"]: re.search(r"([0-9.]+) rays per sample", p["stats"]).group(1) for p in panels}
     printed = subprocess.run(shlex.split(command.replace("--out build/notes/", "--out build/test-web/")), cwd=ROOT, check=True, capture_output=True, text=True).stdout
     native_rays = dict(re.findall(r"\d\. (\w+): .*?([0-9.]+) rays per sample", printed))
-    check(quoted and list(quoted.groups()) == [rays["pt"], native_rays.get("bdpt"), rays["bdpt"]] and native_rays.get("pt") == rays["pt"],
+    check("--strategies" not in command and quoted and list(quoted.groups()) == [rays["pt"], rays["bdpt"]] and [native_rays.get("pt"), native_rays.get("bdpt")] == [rays["pt"], rays["bdpt"]],
           "page 1's equal-time claim: the rays per sample it quotes, as ./bdpt's and the page's panels show them",
           "page %s; panels pt %s, bdpt %s; ./bdpt %s" % (quoted and quoted.groups(), rays.get("pt"), rays.get("bdpt"), native_rays))
 
@@ -908,6 +1037,42 @@ def path_view(browser):
           "; ".join(details))
     check(lit >= 4 and all(own_sample), "the path view draws the pixel's own sample: at %d lit pixels of 6 the drawn connections' sum of C w is the pixel's value in that pass" % lit,
           "; ".join(own_details))
+
+    # web-student-8's W8: each connection says where its light goes: t >= 2 this pixel, t = 1 the
+    # pixel its splat lands on (the renderer's own pixel index).
+    lands, splats = [], 0
+    for x, y in ((40, 52), (12, 30)):
+        browser.js("bdptPage.clickPixel(0, %d, %d)" % (x, y))
+        browser.wait_for("bdptPage.pathView() && bdptPage.pathView().x == %d && bdptPage.pathView().y == %d" % (x, y))
+        v = browser.js("bdptPage.pathView()")
+        for c, shown in zip(v["connections"], v["landsOn"]):
+            want = "this pixel" if c["t"] >= 2 else "pixel (%d, %d)" % (c["pixel"] % v["width"], c["pixel"] // v["width"])
+            lands.append(shown == want)
+            splats += c["t"] == 1
+    check(len(lands) >= 4 and all(lands) and splats >= 1, "the path view says where each connection's light goes (%d rows, %d of them t = 1 splats)" % (len(lands), splats))
+    # W7: a path of one segment (the lamp seen) says why (1,1) weighs 0 whatever the densities.
+    direct = None
+    for y in range(1, 16):
+        browser.js("bdptPage.clickPixel(0, 32, %d)" % y)
+        browser.wait_for("bdptPage.pathView() && bdptPage.pathView().y == %d" % y)
+        v = browser.js("bdptPage.pathView()")
+        i = next((i for i, c in enumerate(v["connections"]) if c["s"] + c["t"] == 2), None)
+        if i is not None:
+            direct = browser.js("bdptPage.choosePath(%d)" % i)
+            break
+    check(direct and direct["directRule"], "the path view of the lamp seen directly (k = 1) says the renderer gives it to s = 0 alone", repr(direct and direct["chosen"]))
+    # vcm's merges drawn: a dashed circle of the radius at each merge of the chosen path.
+    browser.run("scenes/cornell.scene", ["vcm"], 1)
+    merges = []
+    for x, y in ((20, 44), (40, 50), (12, 30)):
+        browser.js("bdptPage.clickPixel(0, %d, %d)" % (x, y))
+        browser.wait_for("bdptPage.pathView() && bdptPage.pathView().x == %d && bdptPage.pathView().y == %d" % (x, y))
+        v = browser.js("bdptPage.pathView()")
+        for i in range(len(v["connections"])):
+            v = browser.js("bdptPage.choosePath(%d)" % i)
+            merges.append((sum(1 for st in v["chosen"]["strategies"] if st["merge"]), v["drawn"]["merges"]))
+    check(any(m > 0 for m, _ in merges) and all(m == d for m, d in merges),
+          "vcm's path view draws each merge of the chosen path (%d paths, %d merges)" % (len(merges), sum(m for m, _ in merges)), repr(merges[:6]))
 
 
 def speed(browser):

@@ -122,7 +122,7 @@ function sceneName() { return $("scene").value; }
 function sceneText() { return $("scene-text").value; }
 function scenePath(short) { return Object.keys(BDPT_SCENES).find((p) => shortName(p) === short) || null; }
 function loadSceneList() {
-    const names = Object.keys(BDPT_SCENES).filter((p) => p.startsWith("scenes/") || p === "tests/thin-gap.scene");
+    const names = Object.keys(BDPT_SCENES).filter((p) => p.startsWith("scenes/") || p === "tests/thin-gap.scene" || p === "tests/glass-camera.scene");
     names.sort((a, b) => rank(a) - rank(b) || a.localeCompare(b));
     function rank(p) { const i = SCENE_ORDER.indexOf(shortName(p)); return i < 0 ? 99 : i; }
     for (const name of names) {
@@ -339,6 +339,7 @@ function referenceFor(panel, entryOwnScene) {
         panel.pageReferencePasses = own.passes;
         return { referenceImage: { width: own.width, height: own.height, data: own.image.slice() } };
     }
+    panel.commandReference = !!state.commandReference;  // the notes' own file: its depth is the command's business
     return { reference: state.commandReference ? "/" + state.commandReference : "" };
 }
 
@@ -376,7 +377,7 @@ async function start() {
         state.panels.push(panel);
         const name = scene || sceneName(), sceneTextToUse = scene ? BDPT_SCENES[scene] : sceneText();
         panel.sceneName = name;
-        if (scene && !sceneTextToUse) { endPanel(panel, `the page has no scene ${scene}: its scenes are scenes/*.scene and tests/energy-generator-flat.scene`); return; }
+        if (scene && !sceneTextToUse) { endPanel(panel, `the page has no scene ${scene}: its scenes are scenes/*.scene, tests/energy-generator-flat.scene, tests/thin-gap.scene and tests/glass-camera.scene`); return; }
         warnAboutMistakes(panel, entry, sceneTextToUse, name);
         // bdpt and vcm panels record their strategies for the pyramid (paths up to 5 segments, or
         // the entry's --strategy-length, which ./bdpt takes only with --strategies DIR).
@@ -529,12 +530,13 @@ function errorText(panel) {
     if (!panel.referenceWidth) return "no reference for this scene: no error";
     if (!panel.comparedWidth) return panel.passes ? `no error at this size: the reference (${panel.referenceName}) is ${panel.referenceWidth}×${panel.referenceHeight}, ` +
         "and the two meet at no common size of 16 pixels or more (64×64 has a reference for every scene)" : "";
-    const partial = /--maxdepth|--strategy-length/.test(panel.entry) ? " (the reference has paths of every length)" : "";
+    // The page's references have paths of every length; a notes command's --ref (cornell-direct) need not.
+    const partial = /--maxdepth|--strategy-length/.test(panel.entry) && !panel.commandReference ? " (the reference has paths of every length)" : "";
     const at = panel.comparedWidth !== panel.width ? ` at ${panel.comparedWidth}×${panel.comparedWidth * panel.height / panel.width}` : "";
     const bias = `${panel.bias >= 0 ? "+" : ""}${(100 * panel.bias).toFixed(2)}%`;  // as ./bdpt prints it
     const against = panel.edited === "rendered" ? ` against the reference the page rendered for this text (bdpt, ${panel.pageReferencePasses} spp: its own noise included)`
         : panel.referenceName && !/^scenes\/refs\/[\w-]+\.pfm$/.test(panel.referenceName) ? ` against ${panel.referenceName}` : "";
-    return `RMSE${at} <b>${fmt4(panel.rmseWithoutLamp)}</b> (${fmt4(panel.rmse)} with the lamp's pixels) · relMSE ${fmt4(panel.relMse)} · bias <b>${bias}</b>${against}${partial}`;
+    return `RMSE${at} <b>${fmt4(panel.rmseWithoutLamp)}</b> (${fmt4(panel.rmse)} with the lamp's pixels) · relMSE ${fmt4(panel.relMse)} · bias <b>${bias}</b> (the mean's, the lamp's pixels left out)${against}${partial}`;
 }
 // The rest of ./bdpt's summary: rays per sample, vcm's light vertices and memory, the chains' b
 // and acceptance, the energy the clamp removed: a line each, as the program prints them.
@@ -795,13 +797,16 @@ function drawPath() {
     $("path-caption").textContent = `One sample of pixel (${v.x}, ${v.y}) of ${panel.entry}, pass ${sample.pass + 1}: the camera subpath (blue, ${sample.camera.length} vertices, ` +
         `the pinhole first) and the light subpath (amber, ${sample.light.length}), and ${sample.connections.length} connection${sample.connections.length === 1 ? "" : "s"} (s,t) ` +
         "that carry light (white; the chosen one thick). Left: in the image; right: from the side (depth across, the camera's up upward)." +
-        (sample.mergeEta > 0 ? " vcm: its weights count the merges too (mergeEta " + f4(sample.mergeEta) + "); the merges are not drawn." :
+        (sample.mergeEta > 0 ? " vcm: its weights count the merges too (mergeEta " + f4(sample.mergeEta) + "); the chosen path's merges are drawn from the side " +
+         "as dashed circles of the merging radius r around the vertex where they would merge (the light subpath's vertex found within r of the camera's)." :
          ` The pixel's value in this pass, ${f4(sample.pixelValue)}, is the sum of C w over the connections with t ≥ 2 (${f4(ownSum(sample))}): ` +
          "this is the pixel's own sample; a t = 1 connection's light lands on the pixel it passes through (light tracing's splat).");
     drawPathImage(panel, sample, c);
     drawPathSide(sample, outline, c);
+    // Where its light goes: the pixel's own value (t >= 2), or the pixel light tracing's splat lands on (t = 1).
+    const landsOn = (x) => (x.t >= 2 ? "this pixel" : `pixel (${x.pixel % panel.width}, ${Math.floor(x.pixel / panel.width)})`);
     const connRows = sample.connections.map((x, i) => `<tr class="connection${i === v.chosen ? " chosen" : ""}" data-index="${i}"><td>s=${x.s} t=${x.t}</td><td>${x.s + x.t - 1}</td>` +
-        `<td>${f4(x.C)}</td>${x.w.map((w) => `<td>${w.toFixed(4)}</td>`).join("")}<td>${f4(x.density)}</td></tr>`).join("");
+        `<td class="lands">${landsOn(x)}</td><td>${f4(x.C)}</td>${x.w.map((w) => `<td>${w.toFixed(4)}</td>`).join("")}<td>${f4(x.density)}</td></tr>`).join("");
     const sums = [0, 1, 2, 3].map((h) => c.strategies.reduce((a, st) => a + st.w[h], 0));
     const stRows = c.strategies.slice().sort((a, b) => a.s - b.s || a.merge - b.merge).map((st) => {
         const self = st.s === c.s && !st.merge;
@@ -810,10 +815,13 @@ function drawPath() {
     }).join("");
     const k = c.s + c.t - 1;
     $("path-tables").innerHTML =
-        `<table class="connections"><tr><th>connection</th><th>k</th><th>C<sub>s,t</sub> (unweighted)</th>${HEURISTICS.map((h) => `<th>w<sub>s,t</sub> ${h}</th>`).join("")}<th>p<sub>s,t</sub></th></tr>${connRows}</table>` +
+        `<table class="connections"><tr><th>connection</th><th>k</th><th>its light goes to</th><th>C<sub>s,t</sub> (unweighted)</th>${HEURISTICS.map((h) => `<th>w<sub>s,t</sub> ${h}</th>`).join("")}<th>p<sub>s,t</sub></th></tr>${connRows}</table>` +
         `<p>The path of s=${c.s} t=${c.t}: x<sub>0</sub> … x<sub>${k}</sub> (${pathVertices(sample, c).map((x) => x.kind).join(", ")}), k = ${k} segments. ` +
         `Every strategy that can make it, its density p from its definition (area measure, the product of its vertices' densities; through a mirror or glass the chain's factor that every strategy shares is left out) and its weight in each heuristic: ` +
-        `each column of weights sums to 1 (unbiased), and the row in bold is the renderer's own w<sub>s,t</sub> above.</p>` +
+        `each column of weights sums to 1 (unbiased), and the row in bold is the renderer's own w<sub>s,t</sub> above.` +
+        (k === 1 ? ` <span class="direct-rule">k = 1 is the light seen directly: the renderer gives it to s = 0 alone, whatever the densities ` +
+                   `(misWeight(): w = 1 for s = 0, 0 for s = 1 t = 1, in every heuristic; pages 1 and 3), so a point light, which s = 0 cannot hit, stays unseen ` +
+                   `as in pbrt; the heuristics' formulas are not applied to this row.</span>` : "") + `</p>` +
         `<table class="strategies"><tr><th>strategy</th><th>p<sub>${k},s</sub></th><th>/ p<sub>s,t</sub></th>${HEURISTICS.map((h) => `<th>${h}</th>`).join("")}</tr>${stRows}` +
         `<tr class="sums"><td>sum</td><td></td><td></td>${sums.map((x) => `<td data-sum="${x}">${x.toFixed(4)}</td>`).join("")}</tr></table>`;
     $("path-tables").querySelectorAll("tr.connection").forEach((row) => (row.onclick = () => { state.path.chosen = Number(row.dataset.index); drawPath(); }));
@@ -859,6 +867,13 @@ function drawPathSide(sample, outline, c) {
         spheres.map((s) => `<circle cx="${s.centre[0]}" cy="${s.centre[1]}" r="${s.r}" fill="none" stroke="#777" stroke-width="${0.4 * u}"/>`).join("") +
         outline.points.map((p) => `<circle cx="${P(p)[0]}" cy="${P(p)[1]}" r="${1.2 * u}" fill="#ffb000"/>`).join("");
     const cam = sample.camera.map((v) => P(v.p)), light = sample.light.map((v) => P(v.p));
+    if (sample.mergeEta > 0) {  // the chosen path's merges: radius r from mergeEta = pi r^2 N, N the light paths of a pass
+        const r = Math.sqrt(sample.mergeEta / (Math.PI * state.path.panel.width * state.path.panel.height)), x = pathVertices(sample, c);
+        for (const st of c.strategies.filter((st) => st.merge)) {
+            const at = P(x[st.s - 1].p);
+            html += `<circle class="merge" cx="${at[0]}" cy="${at[1]}" r="${r}" fill="none" stroke="#e64980" stroke-width="${0.4 * u}" stroke-dasharray="${u} ${u}"/>`;
+        }
+    }
     for (const x of sample.connections) if (x.s > 0) html += polyline([P(sample.light[x.s - 1].p), P(sample.camera[x.t - 1].p)], "#ffffff", (x === c ? 0.9 : 0.3) * u, x === c ? "" : `${2 * u} ${u}`);
     html += polyline(cam, "#4dabf7", 0.6 * u) + polyline(light, "#ffb000", 0.6 * u) + dots(cam, "#4dabf7", 1.1 * u, "camera") + dots(light, "#ffb000", 1.1 * u, "light");
     svg.innerHTML = html;
@@ -896,6 +911,18 @@ function loadNotesList() {
         $("notes-page").append(o);
     }
 }
+// A display formula wider than the notes' column is set smaller until it fits (down to half size;
+// past that it scrolls): a formula cut at the right edge reads as a different formula.
+function fitFormulas(root) {
+    for (const d of root.querySelectorAll(".katex-display")) {
+        const k = d.querySelector(".katex");
+        if (!k) continue;
+        k.style.fontSize = "";
+        if (!d.clientWidth || d.scrollWidth <= d.clientWidth) continue;
+        const natural = k.getBoundingClientRect().width;
+        k.style.fontSize = `${Math.max(0.5, 0.98 * d.clientWidth / natural) * 1.21}em`;  // KaTeX's own size is 1.21em
+    }
+}
 function openNotes(file, anchor) {
     const i = Math.max(0, notesIndex(file)), page = BDPT_NOTES[i], text = $("notes-text");
     state.notesPage = page.file;
@@ -904,6 +931,7 @@ function openNotes(file, anchor) {
     linkPages(text);
     linkCode(text);
     addCommandButtons(text);
+    fitFormulas(text);
     if (!$("code-view").hidden) closeCode();
     const target = anchor && text.querySelector(`[id="${CSS.escape(anchor)}"]`);
     if (target) target.scrollIntoView(); else text.scrollTop = 0, $("notes-view").scrollTop = 0;
@@ -935,7 +963,8 @@ function showCodeFile(file) {
     if (state.codeFile === file) return;
     state.codeFile = file;
     $("code-file").value = file;
-    $("code-text").innerHTML = BDPT_CODE.files[file].map((html, i) => `<span class="line" data-n="${i + 1}">${html}</span>`).join("\n");
+    // a block per line (long ones wrap, style.css), its newline inside it, so a copy keeps the lines
+    $("code-text").innerHTML = BDPT_CODE.files[file].map((html, i) => `<span class="line" data-n="${i + 1}">${html}\n</span>`).join("");
 }
 function closeCode() {
     $("code-view").hidden = true;
@@ -998,9 +1027,12 @@ const FLAGS = ["--overwrite", "--quiet", "--profile"];
 function parseCommand(line) {
     const words = splitWords(line.trim());
     if (words[0] !== "./bdpt") return { reason: "run it in a terminal, in the repository's folder" };
-    if (words.includes("--ratio")) return { reason: "--ratio compares two files: run it in a terminal after the renders" };
+    if (words.includes("--ratio")) return { reason: "--ratio compares two files: run it in a terminal after the renders (in the page, two panels of the same scene, one with a mistake's flag, show their ratio of means)" };
+    for (const tool of ["--compare", "--average"])
+        if (words.includes(tool)) return { reason: `${tool} reads two PFM files the renders wrote: in the page, render both as panels instead; each panel's RMSE, relMSE and bias against the scene's reference, and a mistake's ratio of means, stand for it` };
     if (words.some((w) => /^[A-Z]{2,}(\.\w+)?$/.test(w))) return { reason: "a template: put your own values for its capitals and run it in a terminal" };
-    const settings = { scene: null, entries: null, method: null, spp: 0, seconds: 0, resolution: "0x0", seed: 1, shared: [], reference: "" };
+    // strategies: the pyramid's record (and its rays, the (1,1) connections') only where ./bdpt's --strategies asks for it
+    const settings = { scene: null, entries: null, method: null, spp: 0, seconds: 0, resolution: "0x0", seed: 1, shared: [], reference: "", strategies: false };
     for (let i = 1; i < words.length; ++i) {
         const w = words[i], v = words[i + 1];
         if (w === "--side-by-side") settings.entries = v.split(",").map((e) => e.trim()), ++i;
@@ -1013,7 +1045,7 @@ function parseCommand(line) {
             if (!PAGE_REFERENCES.test(v || "")) return { reason: `its reference ${v} is a file you render first: run it in a terminal (or, in the page, edit the scene and render its reference there)` };
             settings.reference = v, ++i;
         }
-        else if (FIGURE_OPTIONS.includes(w)) ++i;
+        else if (FIGURE_OPTIONS.includes(w)) { if (w === "--strategies") settings.strategies = true; ++i; }
         else if (FLAGS.includes(w)) { if (w === "--profile") return { reason: "--profile prints a terminal's table: run it in a terminal" }; }
         else if (!w.startsWith("--") && w.endsWith(".scene") && !settings.scene) settings.scene = w;
         else if (w.startsWith("--")) {
@@ -1021,6 +1053,8 @@ function parseCommand(line) {
             if (v !== undefined && !v.startsWith("--")) settings.shared.push(v), ++i;
         } else return { reason: `'${w}': not an option the page knows` };
     }
+    if (settings.scene && settings.scene.startsWith("build/"))  // a scene the exercise has the student write
+        return { reason: `${settings.scene} is a scene you write: in the page, choose the scene it starts from, make the change in the scene editor (its text, above the panels) and press Start with these options` };
     if (!settings.scene || !BDPT_SCENES[settings.scene]) return { reason: `the page has no scene ${settings.scene || ""}: run it in a terminal` };
     const list = (settings.entries || [settings.method || "pt"]).map((e) => [e, ...settings.shared].join(" "));
     for (const e of list) {
@@ -1039,6 +1073,8 @@ function applySettings(s) {
     $("spp").value = s.spp;
     $("seconds").value = s.seconds || (s.spp ? 0 : 10);
     $("seed").value = s.seed;
+    $("record-strategies").checked = s.strategies;
+    if ("weighted" in s) $("weighted").checked = s.weighted;
     entryInputs().forEach((input, i) => (input.value = s.entries[i] || ""));
     describeEntries();
     saveState();
@@ -1059,6 +1095,16 @@ async function runSettings(s) {
     applySettings(s);
     return start();
 }
+// The figure a command block makes: the image in the paragraphs just above it, if any.
+function figureBefore(code) {
+    let node = code.closest("pre") || code.closest("p");
+    for (let i = 0; node && i < 3; ++i) {
+        node = node.previousElementSibling;
+        const img = node && (node.matches("img") ? node : node.querySelector("img"));
+        if (img) return img;
+    }
+    return null;
+}
 function addCommandButtons(root) {
     const blocks = [...root.querySelectorAll("pre > code")];
     const inline = [...root.querySelectorAll("code")].filter((c) => !c.closest("pre") && c.textContent.startsWith("./bdpt "));
@@ -1073,7 +1119,12 @@ function addCommandButtons(root) {
             b.className = "run-command";
             if (parsed.settings) {
                 const n = parsed.settings.entries.length;
+                const figure = figureBefore(code);  // the pyramid the figure above shows: weighted or each alone
+                if (parsed.settings.strategies && figure) parsed.settings.weighted = !/unweighted/.test(figure.getAttribute("src"));
                 b.textContent = `▶ Run in the page (${n} panel${n > 1 ? "s" : ""})`;
+                // several commands in one block: each button says which it runs
+                if (lines.length > 1) b.textContent += `: ${parsed.settings.entries.join(", ")}`;
+                if (/--ratio-panel/.test(line)) b.textContent += " (the ratio image is the terminal's figure: the page shows both panels, each with its error)";
                 b.title = line;
                 b.dataset.command = line;
                 b.onclick = () => { runSettings(parsed.settings); if (innerWidth < 1100) $("panels").scrollIntoView(); };
@@ -1085,7 +1136,11 @@ function addCommandButtons(root) {
             }
             bar.append(b);
         }
-        (code.closest("pre") || code).after(bar);
+        // a command inside a sentence gets its buttons after the sentence's paragraph, not inside it
+        const block = code.closest("pre") ? null : code.closest("p, li");
+        if (code.closest("pre")) code.closest("pre").after(bar);
+        else if (block) bar.classList.add("after-text"), block.append(bar);
+        else code.after(bar);
     }
 }
 
@@ -1171,6 +1226,7 @@ function bindControls() {
         navigator.clipboard && navigator.clipboard.writeText(location.href).catch(() => {});
         showStatus("This setting's link (copied, where the browser allows): " + location.href);
     };
+    window.addEventListener("resize", () => fitFormulas($("notes-text")));
     document.addEventListener("keydown", (e) => {
         if (e.target.matches("input:not([type=range]):not([type=checkbox]), textarea, select")) return;  // typing
         const ex = $("exposure");
@@ -1254,7 +1310,7 @@ window.bdptPage = {
                  marked: lines.map((l) => l.textContent),
                  inView: !!r && r.top >= view.top && r.bottom <= view.bottom, beside: view.right <= $("live").getBoundingClientRect().left + 1 };
     },
-    notesButtons: () => [...document.querySelectorAll("#notes-text .run-command")].map((b) => ({ command: b.dataset.command, runs: b.tagName === "BUTTON", reason: b.dataset.reason || "" })),
+    notesButtons: () => [...document.querySelectorAll("#notes-text .run-command")].map((b) => ({ command: b.dataset.command, runs: b.tagName === "BUTTON", reason: b.dataset.reason || "", label: b.textContent })),
     clickNotesButton: (command) => {
         const b = [...document.querySelectorAll("#notes-text button.run-command")].find((x) => x.dataset.command === command);
         if (!b || b.disabled) return false;
@@ -1274,7 +1330,10 @@ window.bdptPage = {
                  sums: [...document.querySelectorAll("#path-tables tr.sums td[data-sum]")].map((td) => Number(td.dataset.sum)),
                  table: [...document.querySelectorAll("#path-tables table.strategies tr[data-s]")].map((tr) => [...tr.cells].map((td) => td.textContent)),
                  drawn: { camera: $("path-image").querySelectorAll("circle.camera").length, light: $("path-image").querySelectorAll("circle.light").length,
-                          sideCamera: $("path-side").querySelectorAll("circle.camera").length, lines: $("path-image").querySelectorAll("polyline").length } };
+                          sideCamera: $("path-side").querySelectorAll("circle.camera").length, lines: $("path-image").querySelectorAll("polyline").length,
+                          merges: $("path-side").querySelectorAll("circle.merge").length },
+                 landsOn: [...document.querySelectorAll("#path-tables td.lands")].map((td) => td.textContent),
+                 directRule: !!document.querySelector("#path-tables .direct-rule") };
     },
     choosePath: (i) => { state.path.chosen = i; drawPath(); return bdptPage.pathView(); },
     // A worker killed without a word, as the system kills one out of memory (the test's own hook).

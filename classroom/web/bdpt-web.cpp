@@ -280,7 +280,11 @@ EMSCRIPTEN_KEEPALIVE const char* bdpt_summary() {
     counted.passes = r.result.passes;
     counted.rays = r.result.rays;
     counted.image.width = r.scene.camera.width, counted.image.height = r.scene.camera.height;
-    std::string s = raysPerSample(counted) + "\n";
+    std::string s = raysPerSample(counted);
+    if (r.opt.strategyMaxLength > 0)  // ./bdpt counts them only with --strategies: its figure without them is lower
+        s += " with the pyramid's record (./bdpt --strategies's count: the record traces the (1,1) connections' shadow rays, "
+             "which bdpt alone spares, their weight being 0)";
+    s += "\n";
     if (r.opt.method == Method::VCM) s += vcmSummary(r.scene, r.result.passes, gPanel.vcm);
     s += methodSummary(r.opt, r.storage.metropolis, r.result.clampRemoved());
     return returned(s);

@@ -215,6 +215,19 @@ TEST_CASE("the teacher's grade: the solution gets every public and every hidden 
     CHECK(results().solution.hiddenMax == -1);  // the student's grader has none
 }
 
+// A mistake loses points in its own task (`caught`: the public points, or the hidden ones), every
+// other task keeps all of its public points, and its task's notes name the mistake.
+void checkCaughtInItsTaskAlone(const Mistake& m, const Report& r, const std::map<std::string, std::pair<int, int>>& caught) {
+    CAPTURE(m.task);
+    CAPTURE(m.what);
+    CAPTURE(r.text);
+    REQUIRE(caught.count(m.task));
+    CHECK(caught.at(m.task).first < caught.at(m.task).second);
+    for (const auto& [task, p] : r.points)
+        if (task != m.task) CHECK(p.first == p.second);
+    CHECK(squeeze(r.notesOf(m.task)).find(m.words) != std::string::npos);
+}
+
 TEST_CASE("each mistake only a hidden check catches loses hidden points in its task, and no other's, and is named") {
     const Results& all = results();
     int hidden = 0;
@@ -222,13 +235,7 @@ TEST_CASE("each mistake only a hidden check catches loses hidden points in its t
         const Mistake& m = all.mistakes[i];
         if (m.kind != "hidden") continue;
         const Report& r = all.reports[i];
-        CAPTURE(m.what);
-        CAPTURE(r.text);
-        REQUIRE(r.hidden.count(m.task));
-        CHECK(r.hidden.at(m.task).first < r.hidden.at(m.task).second);
-        for (const auto& [task, p] : r.points)
-            if (task != m.task) CHECK(p.first == p.second);
-        CHECK(squeeze(r.notesOf(m.task)).find(m.words) != std::string::npos);
+        checkCaughtInItsTaskAlone(m, r, r.hidden);
         CHECK(squeeze(r.notesOf(m.task)).find("[hidden]") != std::string::npos);
         ++hidden;
     }
@@ -255,14 +262,9 @@ TEST_CASE("each plausible mistake loses its task's points and no other's, and th
         const Mistake& m = all.mistakes[i];
         if (m.kind != "mistake") continue;
         const Report& r = all.reports[i];
-        CAPTURE(m.task);
+        checkCaughtInItsTaskAlone(m, r, r.points);
         CAPTURE(m.what);
         CAPTURE(r.text);
-        REQUIRE(r.points.count(m.task));
-        CHECK(r.points.at(m.task).first < r.points.at(m.task).second);
-        for (const auto& [task, p] : r.points)
-            if (task != m.task) CHECK(p.first == p.second);
-        CHECK(squeeze(r.notesOf(m.task)).find(m.words) != std::string::npos);
         for (const std::string& other : m.never) {  // a mistake that is not this one is not named
             CAPTURE(other);
             CHECK(squeeze(r.notesOf(m.task)).find(other) == std::string::npos);
