@@ -3428,10 +3428,13 @@ struct OptionRow {
     const char* help;
     std::function<void(Line&, ArgReader&)> apply;
 };
-const std::vector<Method> kBdptFamily = {Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
-const std::vector<Method> kLightPathMethods = {Method::LT, Method::IR, Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
-const std::vector<Method> kMetropolis = {Method::PSSMLT, Method::MMLT, Method::MLT};
-const std::vector<Method> kPrimarySample = {Method::PSSMLT, Method::MMLT};
+// inline, as kOptions below: an inline variable's initialization is ordered only after other
+// inline ones defined before it (C++17), so a plain const here could still be empty when kOptions
+// copies it, and every option of that family would pass for any method (the page's build did so).
+inline const std::vector<Method> kBdptFamily = {Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
+inline const std::vector<Method> kLightPathMethods = {Method::LT, Method::IR, Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
+inline const std::vector<Method> kMetropolis = {Method::PSSMLT, Method::MMLT, Method::MLT};
+inline const std::vector<Method> kPrimarySample = {Method::PSSMLT, Method::MMLT};
 constexpr const char* kBdptFamilyName = "--method bdpt, vcm, mlt, pssmlt and mmlt";
 constexpr const char* kLightPathName = "the methods that trace light paths (lt, ir, bdpt, vcm, mlt, pssmlt, mmlt)";
 constexpr const char* kMetropolisName = "--method mlt, pssmlt and mmlt";

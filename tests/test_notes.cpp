@@ -463,9 +463,17 @@ TEST_CASE("the pages on paths and strategies each show a path diagram") {
 TEST_CASE("every make target and every figure the notes mention exists, each image at least 560 pixels wide") {
     std::string makefile = slurp("Makefile");
     std::regex target("`make ([a-z-]+)`"), image("\\]\\((figures/[^)]+)\\)");
-    int targets = 0, images = 0;
+    std::regex program("`(?:make )?(build/[A-Za-z_-]+)[ `]");  // a program the notes build or run: build/all_tests, build/worked-path
+    int targets = 0, images = 0, programs = 0;
     for (const std::string& page : notePages()) {
         std::string text = slurp(page);
+        for (std::sregex_iterator it(text.begin(), text.end(), program), end; it != end; ++it) {
+            CAPTURE(page);
+            CAPTURE((*it)[1].str());
+            const std::string name = (*it)[1].str();  // a rule of its own, or one test file's program (the pattern rule build/test_%)
+            CHECK((makefile.find("\n" + name + ":") != std::string::npos || (name.rfind("build/test_", 0) == 0 && fileExists("tests/" + name.substr(6) + ".cpp"))));
+            ++programs;
+        }
         for (std::sregex_iterator it(text.begin(), text.end(), target), end; it != end; ++it) {
             CAPTURE((*it)[1].str());
             CHECK(makefile.find("\n" + (*it)[1].str() + ":") != std::string::npos);
@@ -483,6 +491,7 @@ TEST_CASE("every make target and every figure the notes mention exists, each ima
     }
     CHECK(targets >= 3);
     CHECK(images >= 20);
+    CHECK(programs >= 4);
 }
 
 TEST_CASE("every method has its own line style, the same in every chart; a chart has at most six, each its own colour") {
@@ -1282,6 +1291,9 @@ static std::vector<Quote> notMeasured() {
         {n, "pbrt (v3, 8.2)"},
         {"09-russian-roulette-and-sampling.md", "Veach's thesis, 10.3"},
         {"10-combining-estimators.md", "theorem 9.2"},
+        {"10-combining-estimators.md", "Theorem 9.2: the balance"},
+        // the optional sheet's example, the densities the test `MIS: the max heuristic's near-ties` takes
+        {"10-combining-estimators.md", "densities 1, 1.00008 and 1.00016 would get 0, 1/3 and 1/2"},
         {"14-power-versus-radiance.md", "section 5.2"},
         {"16-metropolis-sampling.md", "Veach 1997, 11.5"},
     };

@@ -612,7 +612,7 @@ function drawChart() {
             : started.length === state.panels.length && !measured.length ? (started.every((p) => p.edited === "none") ? "an edited scene without a reference: no error to chart"
                 : started.every((p) => !p.referenceWidth) ? "this scene has no reference (scenes/refs/): no error to chart" : "no error at this size: no reference meets it (64×64 has one for every scene)")
             : "the curves appear as the panels render their passes";
-        svg.innerHTML = `<text x="${W / 2}" y="${H / 2}" text-anchor="middle" font-size="22">${why}</text>`;
+        svg.innerHTML = `<text x="${W / 2}" y="${H / 2}" text-anchor="middle" font-size="${Math.min(22, 1.6 * W / why.length).toFixed(1)}">${why}</text>`;  // one line inside the chart
         $("chart-caption").textContent = "Error against time: " + why;
         return;
     }
@@ -911,7 +911,7 @@ function loadNotesList() {
         $("notes-page").append(o);
     }
 }
-// A display formula wider than the notes' column is set smaller until it fits (down to half size;
+// A display formula wider than the notes' column is set smaller until it fits (down to 0.5em,
 // past that it scrolls): a formula cut at the right edge reads as a different formula.
 function fitFormulas(root) {
     for (const d of root.querySelectorAll(".katex-display")) {
@@ -919,8 +919,9 @@ function fitFormulas(root) {
         if (!k) continue;
         k.style.fontSize = "";
         if (!d.clientWidth || d.scrollWidth <= d.clientWidth) continue;
-        const natural = k.getBoundingClientRect().width;
-        k.style.fontSize = `${Math.max(0.5, 0.98 * d.clientWidth / natural) * 1.21}em`;  // KaTeX's own size is 1.21em
+        let size = 1.21;  // KaTeX's own size, em; its spacing does not all scale with it: a few rounds
+        for (let round = 0; round < 4 && d.scrollWidth > d.clientWidth && size > 0.5; ++round)
+            size = Math.max(0.5, size * 0.97 * d.clientWidth / d.scrollWidth), k.style.fontSize = `${size}em`;
     }
 }
 function openNotes(file, anchor) {
@@ -1032,6 +1033,8 @@ function parseCommand(line) {
         if (words.includes(tool)) return { reason: `${tool} reads two PFM files the renders wrote: in the page, render both as panels instead; each panel's RMSE, relMSE and bias against the scene's reference, and a mistake's ratio of means, stand for it` };
     if (words.some((w) => /^[A-Z]{2,}(\.\w+)?$/.test(w))) return { reason: "a template: put your own values for its capitals and run it in a terminal" };
     // strategies: the pyramid's record (and its rays, the (1,1) connections') only where ./bdpt's --strategies asks for it
+    const written = words.find((w) => /^build\/.*\.scene$/.test(w));  // a scene the exercise has the student write
+    if (written) return { reason: `${written} is a scene you write: in the page, choose the scene it starts from, make the change in the scene editor (its text, above the panels) and press Start with these options` };
     const settings = { scene: null, entries: null, method: null, spp: 0, seconds: 0, resolution: "0x0", seed: 1, shared: [], reference: "", strategies: false };
     for (let i = 1; i < words.length; ++i) {
         const w = words[i], v = words[i + 1];
@@ -1053,8 +1056,6 @@ function parseCommand(line) {
             if (v !== undefined && !v.startsWith("--")) settings.shared.push(v), ++i;
         } else return { reason: `'${w}': not an option the page knows` };
     }
-    if (settings.scene && settings.scene.startsWith("build/"))  // a scene the exercise has the student write
-        return { reason: `${settings.scene} is a scene you write: in the page, choose the scene it starts from, make the change in the scene editor (its text, above the panels) and press Start with these options` };
     if (!settings.scene || !BDPT_SCENES[settings.scene]) return { reason: `the page has no scene ${settings.scene || ""}: run it in a terminal` };
     const list = (settings.entries || [settings.method || "pt"]).map((e) => [e, ...settings.shared].join(" "));
     for (const e of list) {
@@ -1073,7 +1074,7 @@ function applySettings(s) {
     $("spp").value = s.spp;
     $("seconds").value = s.seconds || (s.spp ? 0 : 10);
     $("seed").value = s.seed;
-    $("record-strategies").checked = s.strategies;
+    if ("strategies" in s) $("record-strategies").checked = s.strategies;
     if ("weighted" in s) $("weighted").checked = s.weighted;
     entryInputs().forEach((input, i) => (input.value = s.entries[i] || ""));
     describeEntries();
@@ -1198,7 +1199,8 @@ function bindControls() {
     $("preset").onchange = () => {
         const p = PRESETS[Number($("preset").value)];
         if (!p) return;
-        applySettings({ scene: scenePath(p.scene), entries: p.entries, spp: p.spp || 0, seconds: p.spp ? 0 : p.seconds || 10, seed: 1, resolution: p.resolution || "64x64" });
+        applySettings({ scene: scenePath(p.scene), entries: p.entries, spp: p.spp || 0, seconds: p.spp ? 0 : p.seconds || 10, seed: 1, resolution: p.resolution || "64x64",
+                        strategies: true });  // a lesson shows its pyramid
         if (p.page) openNotes(p.page);
         $("preset").value = "";
     };
@@ -1226,7 +1228,7 @@ function bindControls() {
         navigator.clipboard && navigator.clipboard.writeText(location.href).catch(() => {});
         showStatus("This setting's link (copied, where the browser allows): " + location.href);
     };
-    window.addEventListener("resize", () => fitFormulas($("notes-text")));
+    window.addEventListener("resize", () => { fitFormulas($("notes-text")); drawChart(); });  // the chart's drawing depends on the width
     document.addEventListener("keydown", (e) => {
         if (e.target.matches("input:not([type=range]):not([type=checkbox]), textarea, select")) return;  // typing
         const ex = $("exposure");
