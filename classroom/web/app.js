@@ -1308,8 +1308,9 @@ window.bdptPage = {
         if ($("code-view").hidden) return null;
         const view = $("notes-view").getBoundingClientRect(), lines = [...$("code-text").querySelectorAll(".line.target")];
         const first = lines[0], r = first && first.getBoundingClientRect();
-        return { where: $("code-where").textContent, first: first ? first.textContent : "", lines: lines.length, firstLine: first ? Number(first.dataset.n) : 0,
-                 marked: lines.map((l) => l.textContent),
+        const text = (l) => l.textContent.replace(/\n$/, "");  // a line's text without the newline its block carries
+        return { where: $("code-where").textContent, first: first ? text(first) : "", lines: lines.length, firstLine: first ? Number(first.dataset.n) : 0,
+                 marked: lines.map(text),
                  inView: !!r && r.top >= view.top && r.bottom <= view.bottom, beside: view.right <= $("live").getBoundingClientRect().left + 1 };
     },
     notesButtons: () => [...document.querySelectorAll("#notes-text .run-command")].map((b) => ({ command: b.dataset.command, runs: b.tagName === "BUTTON", reason: b.dataset.reason || "", label: b.textContent })),
