@@ -1338,33 +1338,25 @@ inline Junction connectionJunction(const Scene& scene, Subpath light, int s, Sub
     return j;
 }
 
-// The strategies able to make one path, each added as r_i = p_i / p_ref (p_ref the weighted
-// strategy's density, r = 1 itself), and its weight w = 1 / sum_i misPower(r_i). The max heuristic
-// gives the path to the largest density; equal densities computed in different orders can each look
-// larger by a rounding error, so every strategy within a factor 1 + 1e-4 of the largest shares it.
-// Measured from the largest, the sharing is the same whichever strategy weighs: the shares sum to 1.
+// The strategies able to make one path, each added as r_i = p_i / p_ref (p_ref the weighted strategy's
+// density, r = 1 itself); w = 1 / sum_i misPower(r_i). Max gives the path to all strategies within 1e-4
+// (rounding) of the largest density: the same set whichever strategy weighs, so the shares sum to 1.
 struct MisSum {
     static constexpr double kTie = 1e-4;
     Heuristic heuristic;
     double sum = 0;
-    std::vector<double>* maxRatios = nullptr;  // the max heuristic's r_i until the largest is known: a
-                                               // buffer of the thread's (one MisSum at a time)
+    std::vector<double>* maxRatios = nullptr;  // max's r_i until the largest is known (the thread's buffer)
     explicit MisSum(Heuristic h) : heuristic(h) {
         thread_local std::vector<double> buffer;
         if (h == Heuristic::Max) maxRatios = &buffer, buffer.clear();
     }
-    void add(double r) {
-        if (heuristic == Heuristic::Max) maxRatios->push_back(r);
-        else sum += misPower(heuristic, r);
-    }
+    void add(double r) { heuristic == Heuristic::Max ? maxRatios->push_back(r) : void(sum += misPower(heuristic, r)); }
     float weight() const {
         if (heuristic != Heuristic::Max) return sum > 0 ? float(1 / sum) : 0;
-        double largest = 0;
-        for (double r : *maxRatios) largest = std::max(largest, r);
-        if (largest > 1 + kTie) return 0;  // itself (r = 1) is not among the largest
-        int sharing = 0;
-        for (double r : *maxRatios) sharing += r * (1 + kTie) >= largest;
-        return sharing ? 1.0f / sharing : 0;
+        auto largest = std::max_element(maxRatios->begin(), maxRatios->end());
+        if (largest == maxRatios->end() || *largest > 1 + kTie) return 0;  // none, or itself (r = 1) not among the largest
+        auto sharing = std::count_if(maxRatios->begin(), maxRatios->end(), [&](double r) { return r * (1 + kTie) >= *largest; });
+        return 1.0f / float(sharing);
     }
 };
 
@@ -3428,9 +3420,7 @@ struct OptionRow {
     const char* help;
     std::function<void(Line&, ArgReader&)> apply;
 };
-// inline, as kOptions below: an inline variable's initialization is ordered only after other
-// inline ones defined before it (C++17), so a plain const here could still be empty when kOptions
-// copies it, and every option of that family would pass for any method (the page's build did so).
+// inline as kOptions, which copies them: its initialization is ordered only after inline ones (C++17)
 inline const std::vector<Method> kBdptFamily = {Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
 inline const std::vector<Method> kLightPathMethods = {Method::LT, Method::IR, Method::BDPT, Method::VCM, Method::PSSMLT, Method::MMLT, Method::MLT};
 inline const std::vector<Method> kMetropolis = {Method::PSSMLT, Method::MMLT, Method::MLT};

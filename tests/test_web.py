@@ -802,6 +802,19 @@ def terminal_free(browser):
                              "(() => { for (let n = b.nextSibling; n; n = n.nextSibling) if (!(n.nodeType === 1 && n.classList.contains('commands')) && n.textContent.trim()) return true; return false; })())"
                              ".map((b) => %s + ': ' + b.parentElement.outerHTML.slice(0, 300))" % json.dumps(page))
     check(not inside, "the notes' commands inside sentences: each button after its paragraph", "; ".join(inside[:3]))
+    # W3: a pyramid button shows the pyramid its figure shows: page 7's unweighted, page 10's weighted.
+    shown = []
+    for page, part, want in (("07-probabilities", "pyramid-balance", False), ("10-combining-estimators", "pyramid-max", True)):
+        browser.js("bdptPage.openNotes(%s)" % json.dumps(page))
+        command = next(b["command"] for b in browser.js("bdptPage.notesButtons()") if part in b["command"] and b["runs"])
+        runs = browser.js("bdptPage.runs()")
+        browser.js("bdptPage.clickNotesButton(%s)" % json.dumps(command))
+        browser.wait_for("bdptPage.runs() > %d" % runs)
+        shown.append((page, browser.js("document.getElementById('weighted').checked"), want, browser.js("document.getElementById('record-strategies').checked")))
+        browser.js("bdptPage.stop()")
+        browser.wait_for("!bdptPage.running()")
+    check(all(w == want and recorded for _, w, want, recorded in shown), "a pyramid's button records it and shows it as its figure does: page 7 unweighted, page 10 weighted", repr(shown))
+    browser.js("document.getElementById('weighted').checked = true")
     # W5: an option the method would ignore is refused, with ./bdpt's own message.
     panels = browser.run("scenes/cornell.scene", ["nee --mis --heuristic balance", "nee --mis"], 1)
     printed = subprocess.run(["./bdpt", "scenes/cornell.scene", "--method", "nee", "--mis", "--heuristic", "balance"], cwd=ROOT, capture_output=True, text=True).stderr
