@@ -10,7 +10,8 @@ protocol (python3-websocket), checked against ./bdpt and against the notes' own 
   option: the panel shows ./bdpt's message with its did-you-mean;
 - six panels at 2 s: a curve per panel on the chart, each falling; 256x256: every panel shows
   its rows within its first pass; the pyramid redrawn only when its data changes;
-- the notes in the page: pages 1, 2, 11 and 13 each give a number their button reproduces; the
+- the notes in the page: pages 1, 2, 11 and 13 each give a number their button reproduces; every
+  command the page runs, at one pass, shows ./bdpt's mean and rays per sample for it; the
   rays per sample of pages 1, 9 and 12 and vcm's memory of page 15 are the panels'; a notes
   command the page cannot run as written says how to do it there (the scene editor, the panels);
 - the path view: where each connection's light goes, why (1,1) weighs 0, vcm's merges drawn;
@@ -288,6 +289,7 @@ def tests(browser, url):
     time_command(browser)
     references(browser)
     numbers_shown(browser)
+    every_command_as_bdpt(browser)
     rays_as_notes(browser)
     terminal_free(browser)
     lessons(browser)
@@ -721,6 +723,47 @@ def references(browser):
     note = "(the reference has paths of every length)"
     check(note not in panels[0]["stats"] and note in panels[1]["stats"], "'paths of every length' said for --maxdepth, not for --rr-start",
           "; ".join(p["stats"] for p in panels))
+
+
+def every_command_as_bdpt(browser):
+    """One number everywhere: every notes command the page runs, at one pass, shows in each panel
+    the mean and the rays per sample ./bdpt prints for that entry (with the pyramid's record where
+    the command has --strategies, as ./bdpt --strategies records it). test_notes holds the notes'
+    numbers to ./bdpt's output, so the page's numbers are the notes'."""
+    differ, compared, record = [], 0, os.path.join(OUT, "every-command-strategies")
+    for page in browser.js("BDPT_NOTES.map((p) => p.file)"):
+        browser.js("bdptPage.openNotes(%s)" % json.dumps(page))
+        for b in [b for b in browser.js("bdptPage.notesButtons()") if b["runs"]]:
+            runs = browser.js("bdptPage.runs()")
+            browser.js("bdptPage.clickNotesButton(%s)" % json.dumps(b["command"]))
+            browser.wait_for("bdptPage.runs() > %d" % runs)
+            browser.js("bdptPage.stop()")
+            browser.wait_for("!bdptPage.running()")
+            browser.js("bdptPage.setOptions({spp: 1, seconds: 0})")  # the button's scene, entries, size, seed and record, one pass
+            browser.js("bdptPage.run()")
+            browser.wait_for("!bdptPage.running()")
+            scene, res, seed = browser.js("['scene', 'resolution', 'seed'].map((id) => document.getElementById(id).value)")
+            recorded = "--strategies" in b["command"].split()  # as ./bdpt runs the command: the record only with --strategies
+            for p in browser.js("bdptPage.panels()"):
+                words = p["entry"].split()
+                if p["error"] or not p["passes"] or "--time" in words or "--wall-time" in words:
+                    continue
+                own = next((w for w in words if w.endswith(".scene")), scene)
+                words = [w for w in words if not w.endswith(".scene")]
+                cmd = ["./bdpt", own, "--method", *words, "--out", os.path.join(OUT, "every-command.png")]
+                for option, value in (("--res", res), ("--spp", "1"), ("--seed", seed)):
+                    if option not in words and value != "0x0":
+                        cmd += [option, value]
+                if recorded and words[0] in ("bdpt", "vcm"):
+                    cmd += ["--strategies", record, "--strategy-length", "5"]
+                printed = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True).stdout
+                rays, mean = re.search(r"[0-9.]+ rays per sample \([^)]*\)", printed), re.search(r"mean ([0-9.e+-]+),", printed)
+                compared += 1
+                if not (rays and mean and rays.group(0) in p["stats"] and abs(p["mean"] - float(mean.group(1))) <= 1e-5 * max(1e-6, abs(p["mean"]))):
+                    differ.append("%s: %s: page %r; ./bdpt %s, mean %s" % (page, p["entry"], p["stats"][:200], rays and rays.group(0), mean and mean.group(1)))
+    check(compared >= 60 and not differ, "every notes command the page runs (%d panels at one pass): the mean and rays per sample ./bdpt prints" % compared,
+          "; ".join(differ[:3]))
+    browser.js("bdptPage.setOptions({strategies: true})")
 
 
 def rays_as_notes(browser):
