@@ -724,7 +724,10 @@ def every_command_as_bdpt(browser):
             browser.wait_for("bdptPage.runs() > %d" % runs)
             browser.js("bdptPage.stop()")
             browser.wait_for("!bdptPage.running()")
-            browser.js("bdptPage.setOptions({spp: 1, seconds: 0})")  # the button's scene, entries, size, seed and record, one pass
+            # the button's scene, entries, size, seed and record, one pass (an entry's own --spp too)
+            entries = [re.sub(r"\s*--spp\s+\d+", "", e) for e in browser.js("[...document.querySelectorAll('input.entry')].map((e) => e.value)")]
+            browser.js("bdptPage.setEntries(%s)" % json.dumps(entries))
+            browser.js("bdptPage.setOptions({spp: 1, seconds: 0})")
             browser.js("bdptPage.run()")
             browser.wait_for("!bdptPage.running()")
             scene, res, seed = browser.js("['scene', 'resolution', 'seed'].map((id) => document.getElementById(id).value)")
