@@ -1345,12 +1345,12 @@ struct MisSum {
     static constexpr double kTie = 1e-4;
     Heuristic heuristic;
     double sum = 0;
-    std::vector<double>* maxRatios = nullptr;  // max's r_i until the largest is known (the thread's buffer)
+    std::vector<double>* maxRatios = nullptr;  // max's r_i until the largest is known (the thread's buffer: one MisSum at a time)
     explicit MisSum(Heuristic h) : heuristic(h) {
         thread_local std::vector<double> buffer;
         if (h == Heuristic::Max) maxRatios = &buffer, buffer.clear();
     }
-    void add(double r) { heuristic == Heuristic::Max ? maxRatios->push_back(r) : void(sum += misPower(heuristic, r)); }
+    void add(double r) { if (heuristic == Heuristic::Max) maxRatios->push_back(r); else sum += misPower(heuristic, r); }
     float weight() const {
         if (heuristic != Heuristic::Max) return sum > 0 ? float(1 / sum) : 0;
         auto largest = std::max_element(maxRatios->begin(), maxRatios->end());
