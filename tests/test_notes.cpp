@@ -916,7 +916,7 @@ static std::vector<RunQuote> runQuoteTable() {
         return std::string("| ") + label + " | {0.rays:%.2f:" + k + "} | {0.mean:%g:" + k + "} | {0.rmse:%.4g:" + k + "} | {0.efficiency:%.0f:" + k + "} |";
     };
     const std::string direct = "./bdpt scenes/cornell.scene --method bdpt --maxdepth 1 --res 24x24 --spp 16 --seed 1 --ref tests/refs/cornell-direct.pfm --out build/notes/direct-bdpt.png";
-    const std::string glossy = "./bdpt build/glossy.scene --method nee --res 128x128 --spp 16 --seed 1 --ref build/glossy-ref.pfm --out build/notes/glossy.png";
+    const std::string glossy = "./bdpt build/glossy.scene --method nee --res 64x64 --spp 16 --seed 1 --ref build/glossy-ref.pfm --out build/notes/glossy.png";
     const std::string bidir = "./bdpt scenes/cornell-glass.scene --method mlt --mutations bidir --res 64x64 --spp 128 --bootstrap 100000 --threads 1 --ref scenes/refs/cornell-glass.pfm --out build/notes/bidir-only.png";
     const std::string random = "./bdpt scenes/cornell.scene --method nee --mis --sampler random --spp 16 --res 64x64 --ref scenes/refs/cornell.pfm --out build/notes/random.png";
     auto profile = [](const std::string& method, const std::string& name) {
@@ -974,10 +974,10 @@ static std::vector<RunQuote> runQuoteTable() {
          "--roulette", {"throughput", "albedo", "off"},
          {"Rays per sample: throughput {0.rays:%.2f:0}, albedo {0.rays:%.2f:1}, off {0.rays:%.2f:2}, and the time follows the rays; "
           "the means agree ({0.mean:%g:0}, {0.mean:%g:1}, {0.mean:%g:2})"}},
-        {p9, {"./bdpt build/glossy.scene --method nee --mis --res 128x128 --spp 128 --out build/glossy-ref.png"}, "", {}, {}},
+        {p9, {"./bdpt build/glossy.scene --method bdpt --res 64x64 --spp 512 --out build/glossy-ref.png"}, "", {}, {}},
         {p9, {glossy, glossy + " || --mis"}, "--seed", seeds,
          {"RMSE {0.rmse:%.3f:min}-{0.rmse:%.3f:max} without `--mis`, {1.rmse:%.4f:min}-{1.rmse:%.4f:max} with it (seeds 1 to 4, "
-          "default sampler), at the same {0.rays:%.2f:0} rays per sample"}},
+          "64x64 as in the page), at the same {0.rays:%.2f:0} rays per sample"}},
         {p13, {"./bdpt scenes/energy-generator.scene --side-by-side \"nee,lt,lt --no-adjoint-correction,nee tests/energy-generator-flat.scene\" "
                "--spp 256 --title \"The energy generator: a shading normal tilted 60 degrees\" --out build/notes/energy.png"}, "", {},
          {"(means {0.mean#1:%.4g} and {0.mean#2:%.4g} in the figure's run)",

@@ -494,9 +494,12 @@ def notes_numbers(browser):
     text = page_text("11-contributions-of-paths")
     quoted = re.search(r"s2_t1 \(mean ([0-9.]+) of its weighted image, half of the whole image's ([0-9.]+)\)", text).groups()
     panels, _ = press("11-contributions-of-paths", "scenes/indirect.scene --method bdpt --spp 64")
-    s2t1 = next(m for m in browser.js("bdptPage.strategyMeans()") if (m["s"], m["t"]) == (2, 1))
-    shown = ["%.3f" % s2t1["weighted"], "%.3f" % panels["bdpt"]["mean"]]
-    check(list(quoted) == shown, "page 11's button: s2_t1's weighted mean and the image's as the page quotes them", "page %s, the page's panels %s" % (list(quoted), shown))
+    # web-student-8's 11.1: the tile's mean is drawn on the pyramid, not only held by the page
+    browser.wait_for("bdptPage.pyramidLabels().some((l) => l.startsWith('s=2 t=1 '))")
+    drawn = next(l for l in browser.js("bdptPage.pyramidLabels()") if l.startswith("s=2 t=1 "))
+    shown = [drawn.split("mean ")[-1], "%.3f" % panels["bdpt"]["mean"]]
+    check(list(quoted) == shown, "page 11's button: s2_t1's weighted mean drawn on its tile and the image's, as the page quotes them",
+          "page %s, the pyramid's label %r and the panel's mean %s" % (list(quoted), drawn, shown[1]))
 
     text = page_text("13-shading-normals")
     quoted = re.search(r"means ([0-9.]+) and ([0-9.]+) in the figure's run.*?\(([0-9.]+) against ([0-9.]+), the figure's", text).groups()
@@ -652,6 +655,25 @@ def references(browser):
           and "against the reference the page rendered for this text" in p["stats"],
           "the furnace at 0.7 with the reference the page rendered for it: the nee panel's bias within 2%%, its mean the closed form %.4f" % closed_form,
           "reference: %r; panel: mean %.4f, bias %s; %r" % (state, p["mean"], p["bias"], p["stats"]))
+    # web-student-8's 9.3: page 9's glossy floor, made in the editor as the exercise says, with the
+    # page's own reference: seed 1's RMSE within the seeds' range the answer quotes (64x64, as in the page).
+    quoted = re.search(r"RMSE ([0-9.]+)-([0-9.]+) without `--mis`, ([0-9.]+)-([0-9.]+) with it \(seeds 1 to 4, 64x64 as in the page\)",
+                       open(os.path.join(ROOT, "lecture_notes/09-russian-roulette-and-sampling.md")).read().replace("\n", " "))
+    text = "".join(line.replace("white", "polished") if line.startswith("quad 0 0 0 ") and "# floor" in line else
+                   line + ("material polished glossy 0.8 0.8 0.8 2000\n" if line.startswith("material lamp") else "")
+                   for line in open(os.path.join(ROOT, "scenes/cornell.scene")).readlines())
+    browser.js("bdptPage.selectScene('scenes/cornell.scene')")
+    browser.js("bdptPage.setSceneText(%s)" % json.dumps(text))
+    browser.js("bdptPage.renderReference({spp: 512})")
+    browser.js("bdptPage.setEntries(['nee', 'nee --mis'])")
+    browser.js("bdptPage.setOptions({resolution: '64x64', spp: 16, seconds: 0, seed: 1})")
+    browser.js("bdptPage.run()")
+    browser.wait_for("!bdptPage.running()")
+    rmse = [p["rmse"] for p in browser.js("bdptPage.panels()")]
+    ranges = quoted and [(float(quoted.group(1)), float(quoted.group(2))), (float(quoted.group(3)), float(quoted.group(4)))]
+    check(quoted and all(r is not None and lo * 0.98 <= r <= hi * 1.02 for r, (lo, hi) in zip(rmse, ranges)),
+          "page 9's exercise 3 in the page's editor, against the page's reference: nee's and nee --mis's RMSE within the answer's ranges",
+          "answer %s; panels %s" % (ranges, rmse))
     browser.js("bdptPage.selectScene('scenes/cornell.scene')")
 
     # 4: a notes command's --ref is honoured (page 2's 24x24 button names tests/refs/cornell-direct.pfm):

@@ -113,6 +113,7 @@ function toImageData(rgb, w, h, stops) {
 const sliderStops = () => Number($("exposure").value);
 const fmt4 = (x) => (x === null || x === undefined || !isFinite(x) ? "–" : String(Number(x.toPrecision(4))));
 const fmt = (x) => (x === null || x === undefined || !isFinite(x) ? "–" : Number(x).toPrecision(3));
+const tileMean = (rgb) => rgb.reduce((a, v) => a + v, 0) / rgb.length;
 const luminance = (rgb, i) => (rgb[3 * i] + rgb[3 * i + 1] + rgb[3 * i + 2]) / 3;
 const escapeHtml = (s) => String(s).replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;").replace(/"/g, "&quot;");
 
@@ -642,8 +643,8 @@ function drawChart() {
 // row brightened by whole stops to the brightest row's level (each bounce keeps about the albedo).
 function pyramidGeometry(panel) {
     const L = Math.max(...panel.strategies.map((s) => s.k)), merges = panel.strategies.some((s) => s.s === s.k + 1);
-    const w = panel.width, h = panel.height, gap = Math.max(2, w >> 4), strip = Math.max(14, h >> 2), margin = Math.max(40, w >> 1);
-    return { L, w, h, gap, strip, margin, cols: L + 1 + (merges ? 1 : 0), W: margin + (L + 1 + (merges ? 1 : 0)) * (w + gap) + gap,
+    const w = panel.width, h = panel.height, gap = Math.max(2, w >> 4), line = Math.max(14, h >> 2), strip = 2 * line, margin = Math.max(40, w >> 1);
+    return { L, w, h, gap, line, strip, margin, cols: L + 1 + (merges ? 1 : 0), W: margin + (L + 1 + (merges ? 1 : 0)) * (w + gap) + gap,
              H: L * (strip + h + gap) + gap,
              tileX: (k, s) => margin + gap + (L - k) * (w + gap) / 2 + s * (w + gap), tileY: (k) => gap + (k - 1) * (strip + h + gap) + strip };
 }
@@ -675,20 +676,29 @@ function drawPyramid() {
     const tile = document.createElement("canvas");
     tile.width = g.w, tile.height = g.h;
     c.fillStyle = "#e8e8e8";
-    c.font = `${Math.round(g.strip * z * 0.7)}px "DejaVu Sans", sans-serif`;
+    const font = (share) => `${Math.round(g.line * z * share)}px "DejaVu Sans", sans-serif`;
     c.textBaseline = "bottom";
+    state.pyramidLabels = [];
     for (const st of panel.strategies) {
-        const x = g.tileX(st.k, st.s), y = g.tileY(st.k);
-        tile.getContext("2d").putImageData(toImageData(weighted ? st.weighted : st.unweighted, g.w, g.h, panel.exposure + sliderStops() + stops[st.k]), 0, 0);
+        const x = g.tileX(st.k, st.s), y = g.tileY(st.k), img = weighted ? st.weighted : st.unweighted;
+        tile.getContext("2d").putImageData(toImageData(img, g.w, g.h, panel.exposure + sliderStops() + stops[st.k]), 0, 0);
         c.drawImage(tile, x * z, y * z, g.w * z, g.h * z);
-        c.fillText(st.s === st.k + 1 ? `merge k=${st.k}` : `s=${st.s} t=${st.k + 1 - st.s}`, x * z, (y - 1) * z);
+        // each tile's mean over pixels and colours, as ./bdpt's summary gives an image's: the share of
+        // the row's light a strategy carries is read here, not guessed from the exposure
+        const mean = tileMean(img), label = [st.s === st.k + 1 ? `merge k=${st.k}` : `s=${st.s} t=${st.k + 1 - st.s}`, `mean ${mean ? mean.toPrecision(3) : 0}`];
+        c.font = font(0.7);
+        c.fillText(label[0], x * z, (y - g.line - 1) * z, g.w * z);
+        c.font = font(0.6);
+        c.fillText(label[1], x * z, (y - 2) * z, g.w * z);
+        state.pyramidLabels.push(label.join(" "));
     }
+    c.font = font(0.7);
     for (let k = 1; k <= g.L; ++k) {
         c.fillText(`k=${k}`, g.gap * z, (g.tileY(k) + g.h / 2) * z);
-        if (stops[k]) c.fillText(`+${stops[k]}`, g.gap * z, (g.tileY(k) + g.h / 2 + g.strip) * z);
+        if (stops[k]) c.fillText(`+${stops[k]}`, g.gap * z, (g.tileY(k) + g.h / 2 + g.line) * z);
     }
     $("pyramid-caption").textContent = `${panel.entry}, ${panel.passes} spp, ${weighted ? "MIS-weighted: a row's tiles sum to that row of the image" : "unweighted: each strategy alone"}; ` +
-        `row k: path length in segments; s: vertices from the light, t: from the camera; +N: the row brightened N stops`;
+        `row k: path length in segments; s: vertices from the light, t: from the camera; mean: the tile's, before the row's +N stops of brightening`;
 }
 function pyramidChoices() {
     const select = $("pyramid-panel"), choices = state.panels.filter((p) => /^(bdpt|vcm)\b/.test(entryScene(p.entry).entry));
@@ -1286,7 +1296,8 @@ window.bdptPage = {
     pyramidRedraws: () => state.pyramidRedraws,
     // Each recorded strategy's mean over pixels and channels, weighted and not (./bdpt --strategies's images' means).
     strategyMeans: () => (state.strategyPanel && state.strategyPanel.strategies || []).map((st) => ({ k: st.k, s: st.s, t: st.k + 1 - st.s,
-        weighted: st.weighted.reduce((a, v) => a + v, 0) / st.weighted.length, unweighted: st.unweighted.reduce((a, v) => a + v, 0) / st.unweighted.length })),
+        weighted: tileMean(st.weighted), unweighted: tileMean(st.unweighted) })),
+    pyramidLabels: () => state.pyramidLabels || [],  // the tiles' labels as drawn: "s=2 t=1 mean 0.125"
     clickPixel: (panelIndex, x, y) => {
         const p = state.panels[panelIndex], r = p.canvas.getBoundingClientRect();
         p.canvas.dispatchEvent(new MouseEvent("click", { clientX: r.left + (x + 0.5) / p.width * r.width, clientY: r.top + (y + 0.5) / p.height * r.height, bubbles: true }));
