@@ -676,6 +676,36 @@ def references(browser):
           "answer %s; panels %s" % (ranges, rmse))
     browser.js("bdptPage.selectScene('scenes/cornell.scene')")
 
+    # The other scenes an exercise has the student write (pages 4, 6, 13): made in the editor, each
+    # command's options on the scene it starts from; the panels' means are the answers' (test_notes
+    # holds those to ./bdpt's on the same scene).
+    def page_text(name):
+        return open(os.path.join(ROOT, "lecture_notes", name + ".md")).read().replace("\n", " ")
+    written = []
+    for page, command, base, change, pattern, entries in (
+            ("04-measurement-equation", "./bdpt build/furnace-08.scene --method pt --maxdepth 3 --spp 16", "furnace", ("diffuse 0.5 0.5 0.5", "diffuse 0.8 0.8 0.8"),
+             r"\(the renderer: ([0-9.]+)\)", ["pt --maxdepth 3"]),
+            ("04-measurement-equation", "./bdpt build/furnace-08.scene --method pt --maxdepth 32 --spp 16", "furnace", ("diffuse 0.5 0.5 0.5", "diffuse 0.8 0.8 0.8"),
+             r"the renderer gives ([0-9.]+)", ["pt --maxdepth 32"]),
+            ("06-extending-paths", "./bdpt build/pool-ior1.scene --side-by-side pt,lt --spp 64 --res 64x48", "refraction", ("material water glass 1.33", "material water glass 1.0"),
+             r"image means pt ([0-9.]+), lt ([0-9.]+)", ["pt", "lt"]),
+            ("13-shading-normals", "./bdpt build/energy-20.scene --method nee --spp 64", "energy-generator", ("tilt 60", "tilt 20"),
+             r"the image mean halves \([0-9.]+ -> ([0-9.]+)\)", ["nee"])):
+        quoted = re.search(pattern, page_text(page))
+        reason = browser.js("bdptPage.applyCommand(%s)" % json.dumps(command.replace("build/%s.scene" % command.split("build/")[1].split(".scene")[0], "scenes/%s.scene" % base)))
+        text = open(os.path.join(ROOT, "scenes", base + ".scene")).read()
+        browser.js("bdptPage.setSceneText(%s)" % json.dumps(text.replace(*change)))
+        browser.js("bdptPage.run()")
+        browser.wait_for("!bdptPage.running()")
+        means = {p["entry"]: p["mean"] for p in browser.js("bdptPage.panels()")}
+        digits = [len(q.split(".")[1]) if "." in q else 0 for q in (quoted.groups() if quoted else [])]
+        shown = ["%.*f" % (d, means.get(e, float("nan"))) for d, e in zip(digits, entries)]
+        written.append((page, command, change[0] in text and not reason and quoted is not None and list(quoted.groups()) == shown,
+                        quoted and quoted.groups(), shown))
+    check(all(ok for _, _, ok, _, _ in written), "the exercises' written scenes (pages 4, 6, 13) made in the editor: the panels' means are the answers'",
+          "; ".join("%s %s: answer %s, panels %s" % (p, c, q, sh) for p, c, ok, q, sh in written if not ok) or "; ".join("%s: %s" % (p, sh) for p, _, _, _, sh in written))
+    browser.js("bdptPage.selectScene('scenes/cornell.scene')")
+
     # 4: a notes command's --ref is honoured (page 2's 24x24 button names tests/refs/cornell-direct.pfm):
     # the panel's RMSE is ./bdpt --ref's, and the panel names the file.
     panels, command = press_button(browser, "02-light-and-path-tracing", "--ref tests/refs/cornell-direct.pfm")

@@ -1259,6 +1259,7 @@ window.bdptPage = {
     ready: () => state.ready === MAX_PANELS,
     selectScene,
     setSceneText: (text) => { $("scene-text").value = text; sceneLines(); describeEntries(); referenceState(); },
+    applyCommand: (line) => { const parsed = parseCommand(line); if (parsed.settings) applySettings(parsed.settings); return parsed.reason || ""; },
     renderReference,   // ({seconds, spp}): resolves when the page's own reference is done
     referenceState: () => $("reference-state").textContent,
     setEntries: (list) => { entryInputs().forEach((e, i) => { e.value = list[i] || ""; }); describeEntries(); },
