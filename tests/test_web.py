@@ -111,6 +111,11 @@ def native(scene, entry, spp, seed=1, res="64x64", extra=()):
     return w, h, img, printed
 
 
+def page_text(name):
+    """A notes page's text on one line (a quote may wrap)."""
+    return open(os.path.join(ROOT, "lecture_notes", name + ".md")).read().replace("\n", " ")
+
+
 def mean(values):
     return math.fsum(values) / len(values)
 
@@ -466,9 +471,6 @@ def time_command(browser):
 
 def notes_numbers(browser):
     """Pages 1, 2, 11 and 13: the number the page quotes, from its button's run in the page."""
-    def page_text(name):
-        return open(os.path.join(ROOT, "lecture_notes", name + ".md")).read().replace("\n", " ")
-
     def press(page, part):
         browser.js("bdptPage.openNotes(%s)" % json.dumps(page))
         buttons = browser.js("bdptPage.notesButtons()")
@@ -658,7 +660,7 @@ def references(browser):
     # web-student-8's 9.3: page 9's glossy floor, made in the editor as the exercise says, with the
     # page's own reference: seed 1's RMSE within the seeds' range the answer quotes (64x64, as in the page).
     quoted = re.search(r"RMSE ([0-9.]+)-([0-9.]+) without `--mis`, ([0-9.]+)-([0-9.]+) with it \(seeds 1 to 4, 64x64 as in the page\)",
-                       open(os.path.join(ROOT, "lecture_notes/09-russian-roulette-and-sampling.md")).read().replace("\n", " "))
+                       page_text("09-russian-roulette-and-sampling"))
     text = "".join(line.replace("white", "polished") if line.startswith("quad 0 0 0 ") and "# floor" in line else
                    line + ("material polished glossy 0.8 0.8 0.8 2000\n" if line.startswith("material lamp") else "")
                    for line in open(os.path.join(ROOT, "scenes/cornell.scene")).readlines())
@@ -679,8 +681,6 @@ def references(browser):
     # The other scenes an exercise has the student write (pages 4, 6, 13): made in the editor, each
     # command's options on the scene it starts from; the panels' means are the answers' (test_notes
     # holds those to ./bdpt's on the same scene).
-    def page_text(name):
-        return open(os.path.join(ROOT, "lecture_notes", name + ".md")).read().replace("\n", " ")
     written = []
     for page, command, base, change, pattern, entries in (
             ("04-measurement-equation", "./bdpt build/furnace-08.scene --method pt --maxdepth 3 --spp 16", "furnace", ("diffuse 0.5 0.5 0.5", "diffuse 0.8 0.8 0.8"),
@@ -692,7 +692,7 @@ def references(browser):
             ("13-shading-normals", "./bdpt build/energy-20.scene --method nee --spp 64", "energy-generator", ("tilt 60", "tilt 20"),
              r"the image mean halves \([0-9.]+ -> ([0-9.]+)\)", ["nee"])):
         quoted = re.search(pattern, page_text(page))
-        reason = browser.js("bdptPage.applyCommand(%s)" % json.dumps(command.replace("build/%s.scene" % command.split("build/")[1].split(".scene")[0], "scenes/%s.scene" % base)))
+        reason = browser.js("bdptPage.applyCommand(%s)" % json.dumps(re.sub(r"build/[\w-]+\.scene", "scenes/%s.scene" % base, command)))
         text = open(os.path.join(ROOT, "scenes", base + ".scene")).read()
         browser.js("bdptPage.setSceneText(%s)" % json.dumps(text.replace(*change)))
         browser.js("bdptPage.run()")
@@ -815,9 +815,6 @@ def every_command_as_bdpt(browser):
 def rays_as_notes(browser):
     """web-student-8's W2: the rays per sample a panel shows are the notes' for the same command,
     and a panel that records the pyramid says that its count includes the record's rays."""
-    def page_text(name):
-        return open(os.path.join(ROOT, "lecture_notes", name + ".md")).read().replace("\n", " ")
-
     def rays_of(panels):
         return {p["entry"]: re.search(r"([0-9.]+) rays per sample", p["stats"]).group(1) for p in panels}
 
