@@ -650,12 +650,7 @@ function pyramidGeometry(panel) {
 }
 function rowStops(panel, weighted) {
     const L = Math.max(...panel.strategies.map((s) => s.k)), rows = new Array(L + 1).fill(0);
-    for (const st of panel.strategies) {
-        const img = weighted ? st.weighted : st.unweighted;
-        let sum = 0;
-        for (let i = 0; i < img.length; ++i) sum += img[i];
-        rows[st.k] += sum;
-    }
+    for (const st of panel.strategies) rows[st.k] += tileMean(weighted ? st.weighted : st.unweighted);  // tiles of one size: means rank as sums
     const brightest = Math.max(...rows);
     return rows.map((r) => (r > 0 ? Math.min(12, Math.round(Math.log2(brightest / r))) : 0));
 }
@@ -1295,9 +1290,6 @@ window.bdptPage = {
         return { entry: p.entry, passes: p.passes, sum, image, tiles: p.strategies.length, drawn: !$("pyramid").hidden };
     },
     pyramidRedraws: () => state.pyramidRedraws,
-    // Each recorded strategy's mean over pixels and channels, weighted and not (./bdpt --strategies's images' means).
-    strategyMeans: () => (state.strategyPanel && state.strategyPanel.strategies || []).map((st) => ({ k: st.k, s: st.s, t: st.k + 1 - st.s,
-        weighted: tileMean(st.weighted), unweighted: tileMean(st.unweighted) })),
     pyramidLabels: () => state.pyramidLabels || [],  // the tiles' labels as drawn: "s=2 t=1 mean 0.125"
     clickPixel: (panelIndex, x, y) => {
         const p = state.panels[panelIndex], r = p.canvas.getBoundingClientRect();
